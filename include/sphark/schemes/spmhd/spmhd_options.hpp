@@ -1,0 +1,47 @@
+#pragma once
+// Options of the SPMHD scheme (seed 000, §II). Units: mu0 = 1 (magnetic pressure B^2/2).
+#include <string>
+#include <string_view>
+
+#include "sphark/core/types.hpp"
+
+namespace sphark {
+
+enum class Cleaning {
+  None,             // no psi field
+  Constrained,      // seed 000: div B by (20), grad psi by its conjugate (23), dpsi/dt by (19)+(25)
+  NonConservative,  // the previous form: difference operators for both, no -psi div v / 2 term
+};
+
+enum class FieldRepresentation {
+  MagneticField,   // evolve B by the induction equation (7)
+  EulerPotentials  // B = grad alpha x grad beta, alpha and beta advected (2D: beta = z, only alpha)
+};
+
+struct SpmhdOptions {
+  Real gamma = 5.0 / 3.0;       // adiabatic index, P = (gamma - 1) rho u
+  Real eta = 1.2;               // h = eta (m/rho)^(1/D), seed 000 eq. (5)
+  Real h_tolerance = 1e-10;     // relative Newton tolerance on h
+  Real h_initial = 0;           // first guess for h (0: from the bounding box and N)
+
+  bool evolve_particles = true; // false: the cleaning subsystem only (fixed particles, state B, psi)
+  FieldRepresentation field = FieldRepresentation::MagneticField;
+  Cleaning cleaning = Cleaning::None;
+  Real sigma = 0.3;             // damping: 1/tau = sigma c_h / h (seed 000, §I)
+  Real fixed_ch = 0;            // > 0: use this c_h; else c_h = max fast magnetosonic speed per RHS
+
+  bool subtract_monopole_force = true;  // seed 000, eq. (9)
+  Real alpha_visc = 1.0;        // artificial viscosity (0 = off)
+  Real beta_visc = 2.0;         // signal velocity v_sig = (c_a + c_b)/2 - beta w_ab for w_ab < 0
+  Real alpha_u = 1.0;           // artificial thermal conductivity (0 = off), v_sig = sqrt(|dP|/rho_ab)
+  Real alpha_b = 0.0;           // artificial resistivity, seed 000 eq. (10) (0 = off)
+
+  Real courant = 0.3;           // for max_stable_dt: C h / v_sig
+  Real skin = 0.25;             // Verlet skin, in units of the largest h
+};
+
+// "none", "constrained", "nonconservative"
+Cleaning parse_cleaning(std::string_view s);
+std::string_view cleaning_name(Cleaning c);
+
+}  // namespace sphark

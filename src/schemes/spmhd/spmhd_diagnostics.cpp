@@ -1,0 +1,53 @@
+#include "sphark/schemes/spmhd/spmhd_diagnostics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sphark {
+
+template <int D, class K>
+SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<D, K>& s, Real t, const Real* y) {
+  SpmhdDiagnostics d;
+  if (s.evaluate(t, y) != 0) {
+    d.mean_h_divb_over_b = d.max_h_divb_over_b = std::nan("");
+    return d;
+  }
+  const StateLayout& L = s.layout();
+  const std::size_t n = s.particles();
+  const auto& m = s.masses();
+  const auto& B = s.magnetic_field();
+  const Real* v = L.has(Field::Velocity) ? y + L.offset(Field::Velocity) : nullptr;
+  const Real* u = L.has(Field::InternalEnergy) ? y + L.offset(Field::InternalEnergy) : nullptr;
+  const Real* psi = L.has(Field::Psi) ? y + L.offset(Field::Psi) : nullptr;
+  const Real ch = s.cleaning_speed();
+  std::size_t counted = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    const Real rho = s.rho()[a];
+    const Real b2 = B[3 * a] * B[3 * a] + B[3 * a + 1] * B[3 * a + 1] + B[3 * a + 2] * B[3 * a + 2];
+    if (b2 > 0) {
+      const Real e = s.h()[a] * std::abs(s.div_b()[a]) / std::sqrt(b2);
+      d.mean_h_divb_over_b += e;
+      d.max_h_divb_over_b = std::max(d.max_h_divb_over_b, e);
+      ++counted;
+    }
+    d.magnetic_energy += m[a] * b2 / (2 * rho);
+    if (v) {
+      Real v2 = 0;
+      for (int k = 0; k < D; ++k) {
+        v2 += v[D * a + k] * v[D * a + k];
+        d.momentum[k] += m[a] * v[D * a + k];
+      }
+      d.kinetic_energy += 0.5 * m[a] * v2;
+    }
+    if (u) d.thermal_energy += m[a] * u[a];
+    if (psi && ch > 0) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho * ch * ch);
+  }
+  if (counted > 0) d.mean_h_divb_over_b /= static_cast<Real>(counted);
+  d.total_energy = d.kinetic_energy + d.magnetic_energy + d.thermal_energy + d.psi_energy;
+  d.cleaning_speed = ch;
+  return d;
+}
+
+template SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<2, CubicSpline<2>>&, Real, const Real*);
+
+}  // namespace sphark

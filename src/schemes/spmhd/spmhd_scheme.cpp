@@ -1,0 +1,228 @@
+#include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <stdexcept>
+
+#include "sphark/operators/density_summation.hpp"
+
+namespace sphark {
+
+Cleaning parse_cleaning(std::string_view s) {
+  if (s == "none") return Cleaning::None;
+  if (s == "constrained") return Cleaning::Constrained;
+  if (s == "nonconservative") return Cleaning::NonConservative;
+  throw std::invalid_argument("unknown cleaning form: " + std::string(s));
+}
+
+std::string_view cleaning_name(Cleaning c) {
+  switch (c) {
+    case Cleaning::None: return "none";
+    case Cleaning::Constrained: return "constrained";
+    case Cleaning::NonConservative: return "nonconservative";
+  }
+  return "unknown";
+}
+
+template <int D, class K>
+SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::optional<PeriodicBox<D>> box,
+                               std::vector<Real> fixed_positions)
+    : n_(masses.size()), m_(std::move(masses)), opt_(opt), layout_(n_), ns_(std::move(box)) {
+  if (n_ == 0) throw std::invalid_argument("SpmhdScheme: no particles");
+  if (!(opt_.gamma > 1)) throw std::invalid_argument("SpmhdScheme: gamma must be > 1");
+  if (!(opt_.eta > 0)) throw std::invalid_argument("SpmhdScheme: eta must be > 0");
+  if (opt_.sigma < 0) throw std::invalid_argument("SpmhdScheme: sigma must be >= 0");
+  if (opt_.evolve_particles) {
+    layout_.add(Field::Position, D).add(Field::Velocity, D).add(Field::InternalEnergy, 1);
+    if (opt_.field == FieldRepresentation::MagneticField) {
+      layout_.add(Field::MagneticField, 3);
+    } else {
+      if (D != 2) throw std::invalid_argument("SpmhdScheme: Euler potentials are implemented for D = 2 (beta = z)");
+      if (opt_.cleaning != Cleaning::None) throw std::invalid_argument("SpmhdScheme: Euler potentials need no cleaning");
+      layout_.add(Field::EulerAlpha, 1);
+    }
+    x_.assign(D * n_, 0);
+  } else {
+    if (opt_.field != FieldRepresentation::MagneticField)
+      throw std::invalid_argument("SpmhdScheme: the fixed-particle subsystem evolves B");
+    if (fixed_positions.size() != D * n_) throw std::invalid_argument("SpmhdScheme: fixed positions must be D x N");
+    layout_.add(Field::MagneticField, 3);
+    x_ = std::move(fixed_positions);
+  }
+  if (opt_.cleaning != Cleaning::None) layout_.add(Field::Psi, 1);
+
+  h_.assign(n_, opt_.h_initial);
+  if (!(opt_.h_initial > 0)) {
+    // First guess from the bounding box of the initial (or fixed) positions, set in prepare().
+    h_.assign(n_, 0);
+  }
+  rho_.assign(n_, 0);
+  omega_.assign(n_, 1);
+  P_.assign(n_, 0);
+  cs_.assign(n_, 0);
+  cf_.assign(n_, 0);
+  B_.assign(3 * n_, 0);
+  divB_.assign(n_, 0);
+  divv_.assign(n_, 0);
+  scratch_.assign(layout_.size(), 0);
+}
+
+template <int D, class K>
+std::size_t SpmhdScheme<D, K>::position_offset() const {
+  return opt_.evolve_particles ? layout_.offset(Field::Position) : 0;
+}
+template <int D, class K>
+std::size_t SpmhdScheme<D, K>::velocity_offset() const {
+  return opt_.evolve_particles ? layout_.offset(Field::Velocity) : 0;
+}
+
+// Verlet lists built with radius R = support * h_est * (1 + skin). A pair closer than
+// support * h now was closer than support * h + 2 * disp at the build, so the lists serve every
+// h <= (R - 2 disp) / support. The density solve reports particles that need more; then rebuild.
+template <int D, class K>
+void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
+  if (h_[0] <= 0) {
+    Vec<D> lo = Eigen::Map<const Vec<D>>(x), hi = lo;
+    for (std::size_t i = 1; i < n_; ++i) {
+      lo = lo.cwiseMin(Eigen::Map<const Vec<D>>(x + D * i));
+      hi = hi.cwiseMax(Eigen::Map<const Vec<D>>(x + D * i));
+    }
+    const Real volume = (hi - lo).prod();
+    std::fill(h_.begin(), h_.end(), opt_.eta * std::pow(volume / static_cast<Real>(n_), 1.0 / D));
+  }
+  Real h_est = *std::max_element(h_.begin(), h_.end());
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    Real cap = 0;
+    if (built_) {
+      const Real disp = opt_.evolve_particles ? ns_.max_displacement_since_build(x) : 0;
+      cap = (ns_.radius() - 2 * disp) / K::support;
+    }
+    if (!built_ || cap < h_est) {
+      ns_.build(x, n_, K::support * h_est * (1 + opt_.skin));
+      built_ = true;
+      cap = ns_.radius() / K::support;
+    }
+    const DensitySolveStats st = solve_density<D, K>(ns_, x, m_.data(), n_, opt_.eta, opt_.h_tolerance, cap,
+                                                     h_.data(), rho_.data(), omega_.data());
+    if (st.outside_list == 0) {
+      if (st.not_converged > 0) throw std::runtime_error("density: h iteration did not converge");
+      return;
+    }
+    h_est = std::max(st.h_max, cap) * 1.5;
+  }
+  throw std::runtime_error("density: smoothing lengths keep growing beyond the neighbour lists");
+}
+
+// Euler potentials in 2D (beta = z): B = grad alpha x z_hat = (d_y alpha, -d_x alpha, 0), with the
+// difference gradient grad alpha_a = -1/(Omega_a rho_a) sum_b m_b (alpha_a - alpha_b) grad_a W_ab(h_a)
+// (Price & Bate 2007). seed 000, §II-A1.
+template <int D, class K>
+void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) {
+  const NeighbourList& L = ns_.list();
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::size_t a = 0; a < n_; ++a) {
+    Vec<D> grad = Vec<D>::Zero();
+    const Real ha = h_[a], r2max = (K::support * ha) * (K::support * ha);
+    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
+      const std::size_t b = L.indices[k];
+      const Vec<D> dx = ns_.separation(x, a, b);
+      const Real r2 = dx.squaredNorm();
+      if (r2 >= r2max) continue;
+      grad += m_[b] * (alpha[a] - alpha[b]) * K::f_over_r(std::sqrt(r2), ha) * dx;
+    }
+    grad *= -1.0 / (omega_[a] * rho_[a]);
+    B_[3 * a + 0] = grad[1];
+    B_[3 * a + 1] = -grad[0];
+    B_[3 * a + 2] = 0;
+  }
+}
+
+template <int D, class K>
+int SpmhdScheme<D, K>::prepare(const Real* y) {
+  const Real* x = x_.data();
+  if (opt_.evolve_particles) {
+    std::copy(y + layout_.offset(Field::Position), y + layout_.offset(Field::Position) + D * n_, x_.begin());
+    ensure_neighbours_and_density(x);
+  } else if (!built_) {
+    ensure_neighbours_and_density(x);
+  }
+  if (opt_.field == FieldRepresentation::MagneticField) {
+    const Real* B = y + layout_.offset(Field::MagneticField);
+    std::copy(B, B + 3 * n_, B_.begin());
+  } else {
+    euler_potential_field(x, y + layout_.offset(Field::EulerAlpha));
+  }
+  const Real* u = opt_.evolve_particles ? y + layout_.offset(Field::InternalEnergy) : nullptr;
+  Real cmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : cmax)
+  for (std::size_t a = 0; a < n_; ++a) {
+    P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
+    cs_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
+    cf_[a] = std::sqrt(cs_[a] * cs_[a] + b2 / rho_[a]);  // fast magnetosonic speed (upper bound)
+    cmax = std::max(cmax, cf_[a]);
+  }
+  ch_ = opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax;
+  if (!std::isfinite(ch_)) {
+    error_ = "non-finite wave speed";
+    return 1;
+  }
+  return 0;
+}
+
+template <int D, class K>
+int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
+  ++rhs_calls_;
+  try {
+    if (const int rc = prepare(y); rc != 0) return rc;
+    force_pass(y, ydot);
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    return 1;
+  }
+  return 0;
+}
+
+template <int D, class K>
+int SpmhdScheme<D, K>::evaluate(Real t, const Real* y) noexcept {
+  const int rc = rhs(t, y, scratch_.data());
+  --rhs_calls_;  // diagnostics are not counted as integrator work
+  return rc;
+}
+
+template <int D, class K>
+int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexcept {
+  try {
+    if (const int rc = prepare(y); rc != 0) return rc;
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    return 1;
+  }
+  std::fill(c, c + layout_.size(), 0.0);
+  if (!has_stiff_diagonal()) return 0;
+  Real* cpsi = c + layout_.offset(Field::Psi);
+  for (std::size_t a = 0; a < n_; ++a) cpsi[a] = opt_.sigma * ch_ / h_[a];  // 1/tau_a
+  return 0;
+}
+
+template <int D, class K>
+Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
+  try {
+    if (prepare(y) != 0) return 0;
+  } catch (const std::exception&) {
+    return 0;
+  }
+  const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
+  Real dt = std::numeric_limits<Real>::infinity();
+  for (std::size_t a = 0; a < n_; ++a) {
+    Real vsig = std::max(ch_, cf_[a]);
+    if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * a).norm();
+    if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
+  }
+  return dt;
+}
+
+template class SpmhdScheme<2, CubicSpline<2>>;
+
+}  // namespace sphark
