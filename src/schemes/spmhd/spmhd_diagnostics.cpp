@@ -24,6 +24,7 @@ SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<D, K>& s, Real t, const Real* y) 
   for (std::size_t a = 0; a < n; ++a) {
     const Real rho = s.rho()[a];
     const Real b2 = B[3 * a] * B[3 * a] + B[3 * a + 1] * B[3 * a + 1] + B[3 * a + 2] * B[3 * a + 2];
+    d.max_h_divb = std::max(d.max_h_divb, s.h()[a] * std::abs(s.div_b()[a]));
     if (b2 > 0) {
       const Real e = s.h()[a] * std::abs(s.div_b()[a]) / std::sqrt(b2);
       d.mean_h_divb_over_b += e;

@@ -11,6 +11,7 @@ namespace sphark {
 struct SpmhdDiagnostics {
   Real mean_h_divb_over_b = 0;
   Real max_h_divb_over_b = 0;
+  Real max_h_divb = 0;        // max h|div B| (not normalised; grows with the field)
   Real kinetic_energy = 0;    // sum m v^2 / 2
   Real magnetic_energy = 0;   // sum m B^2 / (2 rho)
   Real thermal_energy = 0;    // sum m u
