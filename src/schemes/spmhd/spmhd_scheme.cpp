@@ -142,8 +142,13 @@ template <int D, class K>
 int SpmhdScheme<D, K>::prepare(const Real* y) {
   const Real* x = x_.data();
   if (opt_.evolve_particles) {
-    std::copy(y + layout_.offset(Field::Position), y + layout_.offset(Field::Position) + D * n_, x_.begin());
-    ensure_neighbours_and_density(x);
+    // Density, h and Omega depend on the positions only: skip the solve when they are unchanged
+    // (bit for bit) since the last call, e.g. max_stable_dt or stiff_diagonal after rhs.
+    const Real* xs = y + layout_.offset(Field::Position);
+    if (!built_ || !std::equal(xs, xs + D * n_, x_.begin())) {
+      std::copy(xs, xs + D * n_, x_.begin());
+      ensure_neighbours_and_density(x);
+    }
   } else if (!built_) {
     ensure_neighbours_and_density(x);
   }
