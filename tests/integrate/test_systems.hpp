@@ -61,6 +61,29 @@ class StiffRelaxation : public OdeSystem {
   bool forcing_;
 };
 
+// Oscillator driving a stiffly damped scalar (like the cleaning field psi):
+// x'' = -x, psi' = x - c psi. With x = cos t, psi0 = c / (1 + c^2):
+// psi = (c cos t + sin t) / (1 + c^2). Stiff part: -c psi.
+class DampedOscillator : public Oscillator {
+ public:
+  explicit DampedOscillator(Real c) : c_(c) {}
+  std::size_t size() const override { return 3; }
+  int rhs(Real t, const Real* y, Real* ydot) noexcept override {
+    ydot[2] = y[0] - c_ * y[2];
+    return Oscillator::rhs(t, y, ydot);
+  }
+  bool has_stiff_diagonal() const override { return true; }
+  int stiff_diagonal(Real, const Real*, Real* c) noexcept override {
+    c[0] = c[1] = 0;
+    c[2] = c_;
+    return 0;
+  }
+  Real psi(Real t) const { return (c_ * std::cos(t) + std::sin(t)) / (1 + c_ * c_); }
+
+ private:
+  Real c_;
+};
+
 // Oscillator whose RHS refuses (recoverable, +1) to be evaluated more than `jump` ahead of the
 // latest time it accepted: like an SPH scheme whose neighbour list is valid only within a skin.
 class JumpLimitedOscillator : public Oscillator {
