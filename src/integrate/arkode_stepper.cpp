@@ -69,14 +69,16 @@ void ArkodeStepper::bound_step(Real t_out) {
     fixed_step_reduced_ = false;
     return;
   }
-  Real bound = opts_.max_dt > 0 ? opts_.max_dt : std::numeric_limits<Real>::infinity();
+  step_cap_ = opts_.max_dt > 0 ? opts_.max_dt : std::numeric_limits<Real>::infinity();
   const Real stable = opts_.cfl_safety * system_.max_stable_dt(t_last_, y_last_.data());
-  if (stable > 0 && std::isfinite(stable)) bound = std::min(bound, stable);
-  check(api_.set_max_step(mem_, std::isfinite(bound) ? bound : 0.0), "SetMaxStep");
+  if (stable > 0 && std::isfinite(stable)) step_cap_ = std::min(step_cap_, stable);
+  check(api_.set_max_step(mem_, std::isfinite(step_cap_) ? step_cap_ : 0.0), "SetMaxStep");
 }
 
 // ARKODE 6.4.1 turns a recoverable failure of an explicit RHS evaluation into
-// ARK_UNREC_RHSFUNC_ERR. Restart from the last accepted state with a smaller step instead.
+// ARK_UNREC_RHSFUNC_ERR. Restart from the last accepted state with a step 4x smaller than the
+// failed one; adaptive runs also cap the step at half the failed one until the next advance()
+// (otherwise ARKODE regrows the step after the restart and fails again at once).
 bool ArkodeStepper::recover(int& consecutive) {
   if (t_accepted_ != t_recovered_) consecutive = 0;  // progress since the last restart
   t_recovered_ = t_accepted_;
@@ -86,8 +88,12 @@ bool ArkodeStepper::recover(int& consecutive) {
   h = kRecoveryFactor * std::abs(h);
   auto y = make_view(y_accepted_.size(), y_accepted_.data(), ctx_.get());
   if (api_.reset(mem_, t_accepted_, y.get()) < 0) return false;
-  const int flag = opts_.fixed_dt > 0 ? api_.set_fixed_step(mem_, h) : api_.set_init_step(mem_, h);
-  if (flag < 0) return false;
+  if (opts_.fixed_dt > 0) {
+    if (api_.set_fixed_step(mem_, h) < 0) return false;
+  } else {
+    step_cap_ = std::min(step_cap_, 2 * h);
+    if (api_.set_init_step(mem_, h) < 0 || api_.set_max_step(mem_, step_cap_) < 0) return false;
+  }
   fixed_step_reduced_ = opts_.fixed_dt > 0;
   ++recoveries_;
   return true;
