@@ -28,18 +28,28 @@ void apply_thread_count(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
 }
 
+namespace {
+// "'<path>'", built stepwise (operator+("'", std::string) trips GCC 12's -Wrestrict).
+std::string quoted(const std::filesystem::path& p) {
+  std::string q = "'";
+  q += p.string();
+  q += '\'';
+  return q;
+}
+}  // namespace
+
 std::optional<std::string> output_dir_problem(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   if (dir.empty()) return "empty directory name";
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) return "cannot create '" + dir.string() + "': " + ec.message();
-  if (!fs::is_directory(dir, ec)) return "'" + dir.string() + "' is not a directory";
+  if (ec) return "cannot create " + quoted(dir) + ": " + ec.message();
+  if (!fs::is_directory(dir, ec)) return quoted(dir) + " is not a directory";
   // Probe: create and remove a file (access(2) is not reliable, e.g. when running as root on a
   // read-only mount).
   const fs::path probe = temporary_sibling(dir / "write_probe");
   std::FILE* f = std::fopen(probe.c_str(), "w");
-  if (!f) return "cannot write in '" + dir.string() + "': " + std::strerror(errno);
+  if (!f) return "cannot write in " + quoted(dir) + ": " + std::strerror(errno);
   std::fclose(f);
   fs::remove(probe, ec);
   return std::nullopt;

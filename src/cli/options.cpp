@@ -186,13 +186,16 @@ ParseStatus OptionParser::parse(int argc, const char* const* argv) {
                  option.data(), reason.c_str());
     return ParseStatus::usage_error;
   };
-  for (int i = 1; i < argc; ++i) {
+  for (int i = 1; i < argc; ++i) {  // --help wins wherever it is
     const std::string_view arg = argv[i];
     if (arg == "--help" || arg == "-h") {
       std::fputs(help().c_str(), stdout);
       std::fflush(stdout);
       return ParseStatus::help;
     }
+  }
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
     if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) {
       std::string quoted = "'";  // (built stepwise: GCC 12 -Wrestrict false positive)
       quoted.append(arg).append("'");

@@ -137,7 +137,9 @@ TEST(Options, HelpListsEveryOptionWithDefaultAndMeaning) {
   std::string kernel = "cubic";
   bool cleaning = true;
   Real alpha = 1;
-  const Parsed r = run({"--t-end", "0.5", "--help", "--bogus"}, o, &seed, &kernel, &cleaning, &alpha);
+  // --help wins even after a bad option.
+  const Parsed r = run({"--bogus", "--t-end", "0.5", "--help"}, o, &seed, &kernel, &cleaning,
+                       &alpha);
   EXPECT_EQ(r.status, ParseStatus::help);
   EXPECT_TRUE(r.err.empty());
   const std::string& h = r.out;

@@ -58,8 +58,9 @@ class OptionParser {
   // "--name on|off".
   void add_switch(std::string name, bool* target, std::string help);
 
-  // Parses argv[1..argc). On --help prints help() to stdout and returns help; on bad input
-  // prints one line to stderr and returns usage_error (targets may be partly assigned).
+  // Parses argv[1..argc). If any argument is --help (or -h): prints help() to stdout and
+  // returns help. On bad input: prints one line to stderr and returns usage_error (targets
+  // may be partly assigned).
   ParseStatus parse(int argc, const char* const* argv);
   ParseStatus parse(int argc, char** argv) {
     return parse(argc, const_cast<const char* const*>(argv));
