@@ -1,0 +1,20 @@
+#pragma once
+// Pictures from C++: runs a script from the source tree's vis/ folder with /usr/bin/python3.
+// Never aborts a finished run: any failure is one warning line on stderr and a false return.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sphark {
+
+// The vis/ folder of the source tree (SPHARK_SOURCE_DIR "/vis").
+std::filesystem::path vis_dir();
+
+// Runs `/usr/bin/python3 <vis_dir()/script> args...` (no shell: arguments are passed as they
+// are). If needs_display and $DISPLAY is unset or empty, runs it under `xvfb-run -a`.
+// Returns true iff the script exited with status 0. On failure (script or python or xvfb-run
+// missing, non-zero exit, killed) prints one line "sphark: warning: ..." to stderr.
+bool run_python(const std::string& script_relative_to_vis, const std::vector<std::string>& args,
+                bool needs_display);
+
+}  // namespace sphark
