@@ -1,0 +1,121 @@
+// seed 001, Tables 1-3 (uniform particles): every printed digit for N = 11 ... 161, the observed
+// orders, and convergence of the boundary-value problem (5.18). Reference data typed from the paper.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "sphark/derivatives1d/study1d.hpp"
+
+using namespace sphark;
+using namespace sphark::d1;
+
+namespace {
+struct PaperRow {
+  Method method;
+  Index n;
+  const char* e;  // e_N as printed
+  double p;       // p_N as printed (NaN: none)
+};
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+
+// seed 001, Table 1: direct, uniform, c = 2 for all three methods
+const PaperRow kTable1[] = {
+    {Method::Cspm, 11, "1.417163e+01", kNone},   {Method::Cspm, 21, "1.429096e+01", -0.0121},
+    {Method::Cspm, 41, "1.432149e+01", -0.0031}, {Method::Cspm, 81, "1.432916e+01", -0.0008},
+    {Method::Cspm, 161, "1.433108e+01", -0.0002},
+    {Method::Bim, 11, "2.541300e-01", kNone},    {Method::Bim, 21, "6.336412e-01", -1.3181},
+    {Method::Bim, 41, "1.535954e+00", -1.2774},  {Method::Bim, 81, "3.585439e+00", -1.2230},
+    {Method::Bim, 161, "7.712388e+00", -1.1050},
+    {Method::Icspm, 11, "7.718045e-01", kNone},  {Method::Icspm, 21, "1.965008e-01", 1.9737},
+    {Method::Icspm, 41, "4.934995e-02", 1.9934}, {Method::Icspm, 81, "1.235158e-02", 1.9984},
+    {Method::Icspm, 161, "3.088777e-03", 1.9996},
+};
+// seed 001, Table 2: direct, uniform, BIM with h = k^2 dx
+const PaperRow kTable2[] = {
+    {Method::Bim, 11, "3.089736e+00", kNone},   {Method::Bim, 21, "3.212382e-01", 3.2658},
+    {Method::Bim, 41, "4.607038e-01", -0.5202}, {Method::Bim, 81, "3.741568e-01", 0.3002},
+    {Method::Bim, 161, "2.328916e-01", 0.6840},
+};
+// seed 001, Table 3: boundary-value problem (5.18), uniform; CSPM/ICSPM c = 2, BIM h = k^2 dx
+const PaperRow kTable3[] = {
+    {Method::Cspm, 11, "8.904183e-02", kNone},   {Method::Cspm, 21, "2.483635e-02", 1.8420},
+    {Method::Cspm, 41, "6.473150e-03", 1.9399},  {Method::Cspm, 81, "1.646873e-03", 1.9747},
+    {Method::Cspm, 161, "4.149916e-04", 1.9886},
+    {Method::Bim, 11, "4.294576e-02", kNone},    {Method::Bim, 21, "6.346824e-03", 2.7584},
+    {Method::Bim, 41, "8.987147e-03", -0.5018},  {Method::Bim, 81, "6.850803e-03", 0.3916},
+    {Method::Bim, 161, "3.860040e-03", 0.8277},
+    {Method::Icspm, 11, "5.251809e-03", kNone},  {Method::Icspm, 21, "1.267271e-03", 2.0511},
+    {Method::Icspm, 41, "3.155887e-04", 2.0056}, {Method::Icspm, 81, "7.870952e-05", 2.0034},
+    {Method::Icspm, 161, "1.967555e-05", 2.0001},
+};
+
+template <std::size_t K>
+void expect_table(int number, const PaperRow (&paper)[K]) {
+  const std::vector<TableRow> ours = compute_table(paper_table(number), paper_sizes(5), 0, seed_function());
+  ASSERT_EQ(ours.size(), K);
+  for (std::size_t k = 0; k < K; ++k) {
+    const PaperRow& ref = paper[k];
+    const TableRow& row = ours[k];
+    ASSERT_EQ(row.method, ref.method);
+    ASSERT_EQ(row.n, ref.n);
+    const double e_paper = std::stod(ref.e);
+    EXPECT_NEAR(row.error, e_paper, 1e-6 * e_paper) << "Table " << number << " " << method_name(ref.method)
+                                                    << " N=" << ref.n;
+    char printed[32];
+    std::snprintf(printed, sizeof printed, "%.6e", row.error);
+    EXPECT_EQ(std::string(printed), std::string(ref.e)) << "Table " << number << " " << method_name(ref.method)
+                                                        << " N=" << ref.n << ": not the printed digits";
+    if (!std::isnan(ref.p)) {  // printed to 4 decimals
+      EXPECT_NEAR(row.order, ref.p, 0.5e-4 + 1e-9) << "Table " << number << " " << method_name(ref.method)
+                                                   << " N=" << ref.n;
+    }
+  }
+}
+
+std::map<Method, std::vector<TableRow>> by_method(const std::vector<TableRow>& rows) {
+  std::map<Method, std::vector<TableRow>> m;
+  for (const TableRow& r : rows) m[r.method].push_back(r);
+  return m;
+}
+}  // namespace
+
+TEST(PaperTables, Table1DirectUniformEveryDigit) { expect_table(1, kTable1); }
+TEST(PaperTables, Table2BimIncreasingCEveryDigit) { expect_table(2, kTable2); }
+TEST(PaperTables, Table3BoundaryValueProblemEveryDigit) { expect_table(3, kTable3); }
+
+TEST(PaperTables, Table1ObservedOrders) {  // ICSPM second order, CSPM zeroth order (seed 001 §V.I)
+  auto t = by_method(compute_table(paper_table(1), paper_sizes(5), 0, seed_function()));
+  for (std::size_t k = 2; k < t[Method::Icspm].size(); ++k) EXPECT_NEAR(t[Method::Icspm][k].order, 2.0, 0.01);
+  for (std::size_t k = 2; k < t[Method::Cspm].size(); ++k) EXPECT_NEAR(t[Method::Cspm][k].order, 0.0, 0.01);
+  for (std::size_t k = 1; k < t[Method::Bim].size(); ++k) EXPECT_LT(t[Method::Bim][k].order, -1.0);  // diverges
+}
+
+TEST(PaperTables, BoundaryValueProblemConverges) {
+  auto t = by_method(compute_table(paper_table(3), paper_sizes(5), 0, seed_function()));
+  for (Method m : {Method::Cspm, Method::Icspm})
+    for (std::size_t k = 1; k < t[m].size(); ++k) EXPECT_GT(t[m][k].order, 1.8) << method_name(m);
+  EXPECT_LT(t[Method::Bim].back().error, t[Method::Bim].front().error / 10);
+  EXPECT_GT(t[Method::Bim].back().order, 0.8);
+  // ICSPM is an order of magnitude more accurate than CSPM (seed 001 §V.I)
+  EXPECT_LT(t[Method::Icspm].back().error, t[Method::Cspm].back().error / 10);
+}
+
+// Beyond the paper: a second smooth function, f = e^x sin(3x), with the same Table 1 / 3 set-up.
+TEST(SecondFunction, SameOrdersAsThePaperFunction) {
+  auto d = by_method(compute_table(paper_table(1), paper_sizes(5), 0, exp_sin_function()));
+  EXPECT_NEAR(d[Method::Icspm].back().order, 2.0, 0.02);
+  EXPECT_NEAR(d[Method::Cspm].back().order, 0.0, 0.02);
+  auto b = by_method(compute_table(paper_table(3), paper_sizes(5), 0, exp_sin_function()));
+  EXPECT_NEAR(b[Method::Icspm].back().order, 2.0, 0.05);
+  EXPECT_NEAR(b[Method::Cspm].back().order, 2.0, 0.05);
+}
+
+TEST(RandomParticles, IcspmBeatsCspmOnTheDirectProblem) {  // Table 4 character, one seed, N <= 321
+  const std::vector<TableRow> rows = compute_table(paper_table(4), paper_sizes(6), 1, seed_function());
+  auto t = by_method(rows);
+  EXPECT_GT(t[Method::Cspm].back().error, 5.0);  // zeroth order: O(10) at every N
+  EXPECT_LT(t[Method::Icspm].back().error, t[Method::Cspm].back().error / 10);
+}
