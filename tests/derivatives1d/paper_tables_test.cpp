@@ -104,13 +104,23 @@ TEST(PaperTables, BoundaryValueProblemConverges) {
 }
 
 // Beyond the paper: a second smooth function, f = e^x sin(3x), with the same Table 1 / 3 set-up.
-TEST(SecondFunction, SameOrdersAsThePaperFunction) {
+// The paper's f = x^2 + cos(pi x) has f''' = pi^3 sin(pi x) = 0 at both ends, which hides the
+// first-order boundary error of ICSPM (seed 001 §IV.III: "first-order accurate near boundaries").
+// With f'''(0) = -18 the direct ICSPM error is first order, as the analysis predicts.
+TEST(SecondFunction, IcspmIsFirstOrderWhenThirdDerivativeIsNonzeroAtTheBoundary) {
   auto d = by_method(compute_table(paper_table(1), paper_sizes(5), 0, exp_sin_function()));
-  EXPECT_NEAR(d[Method::Icspm].back().order, 2.0, 0.02);
+  const auto& ic = d[Method::Icspm];
+  for (std::size_t k = 2; k < ic.size(); ++k) {
+    EXPECT_GT(ic[k].order, 0.75) << "N=" << ic[k].n;
+    EXPECT_LT(ic[k].order, 1.05) << "N=" << ic[k].n;
+    EXPECT_GT(ic[k].order, ic[k - 1].order) << "N=" << ic[k].n;  // approaching 1 from below
+  }
   EXPECT_NEAR(d[Method::Cspm].back().order, 0.0, 0.02);
+  // the boundary-value problem stays second order for CSPM and ICSPM
   auto b = by_method(compute_table(paper_table(3), paper_sizes(5), 0, exp_sin_function()));
   EXPECT_NEAR(b[Method::Icspm].back().order, 2.0, 0.05);
   EXPECT_NEAR(b[Method::Cspm].back().order, 2.0, 0.05);
+  EXPECT_LT(b[Method::Icspm].back().error, b[Method::Cspm].back().error / 5);
 }
 
 TEST(RandomParticles, IcspmBeatsCspmOnTheDirectProblem) {  // Table 4 character, one seed, N <= 321
