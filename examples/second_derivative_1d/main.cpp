@@ -1,5 +1,6 @@
 // Reproduces seed 001 (SPH second derivatives near boundaries in 1D): Tables 1-5 as CSV + Markdown,
 // the data and PNGs of Figures 2, 4, 5, a second test function and the cost of each operator.
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
