@@ -122,3 +122,22 @@ TEST(Operators1D, RejectsBadInput) {
   EXPECT_THROW(uniform_particles(2), std::invalid_argument);
   EXPECT_THROW(random_particles(1, 0), std::invalid_argument);
 }
+
+// Beyond the paper: kappa (4.14) passes through zero about 0.30 h from the boundary (continuous
+// limit, kappa(s = 0.3017) = 0 by quadrature of the kernel moments). With h = 40 dx the discrete
+// moments are accurate quadratures, so kappa_i changes sign between the particles at s = 0.3 and
+// s = 0.325; on the paper's uniform sets (c = 2, s = 0, 0.5, 1, ...) no particle comes close to it.
+TEST(Operators1D, KappaVanishesAboutThreeTenthsOfHFromTheBoundary) {
+  const Particles1D fine = uniform_particles(1601);
+  const Real h = 40.0 / 1600;
+  const Moments1D m = moments(fine, h);
+  EXPECT_LT(m.kappa[0], -0.25);  // at the boundary itself kappa = -0.30 (continuous)
+  EXPECT_LT(m.kappa[12], 0.0);   // s = 0.300
+  EXPECT_GT(m.kappa[13], 0.0);   // s = 0.325
+  EXPECT_NEAR(m.kappa[80], 1.0, 1e-3);  // s = 2: full support
+  const Particles1D coarse = uniform_particles(41);
+  const Moments1D mc = moments(coarse, 2.0 / 40);
+  EXPECT_NEAR(mc.kappa[0], -0.2074, 1e-4);  // the boundary particle (s = 0)
+  EXPECT_NEAR(mc.kappa[1], 0.5147, 1e-4);   // s = 0.5
+  for (Index i = 0; i < coarse.size(); ++i) EXPECT_GT(std::abs(mc.kappa[i]), 0.2) << i;
+}
