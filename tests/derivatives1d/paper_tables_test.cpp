@@ -1,5 +1,7 @@
-// seed 001, Tables 1-3 (uniform particles): every printed digit for N = 11 ... 161, the observed
-// orders, and convergence of the boundary-value problem (5.18). Reference data typed from the paper.
+// seed 001, Tables 1-3 (uniform particles): every printed digit for N = 11 ... 161 and relative
+// 1e-6 for N = 321, 641, the observed orders, and convergence of the boundary-value problem (5.18).
+// Reference data typed from the paper. (N = 1281 is left out: there two ICSPM entries differ from
+// the print in the 6th digit by double round-off, see docs/second_derivative_1d.md.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,36 +27,43 @@ constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 const PaperRow kTable1[] = {
     {Method::Cspm, 11, "1.417163e+01", kNone},   {Method::Cspm, 21, "1.429096e+01", -0.0121},
     {Method::Cspm, 41, "1.432149e+01", -0.0031}, {Method::Cspm, 81, "1.432916e+01", -0.0008},
-    {Method::Cspm, 161, "1.433108e+01", -0.0002},
+    {Method::Cspm, 161, "1.433108e+01", -0.0002}, {Method::Cspm, 321, "1.433156e+01", -0.0000},
+    {Method::Cspm, 641, "1.433168e+01", -0.0000},
     {Method::Bim, 11, "2.541300e-01", kNone},    {Method::Bim, 21, "6.336412e-01", -1.3181},
     {Method::Bim, 41, "1.535954e+00", -1.2774},  {Method::Bim, 81, "3.585439e+00", -1.2230},
-    {Method::Bim, 161, "7.712388e+00", -1.1050},
+    {Method::Bim, 161, "7.712388e+00", -1.1050},  {Method::Bim, 321, "1.597336e+01", -1.0504},
+    {Method::Bim, 641, "3.249707e+01", -1.0246},
     {Method::Icspm, 11, "7.718045e-01", kNone},  {Method::Icspm, 21, "1.965008e-01", 1.9737},
     {Method::Icspm, 41, "4.934995e-02", 1.9934}, {Method::Icspm, 81, "1.235158e-02", 1.9984},
-    {Method::Icspm, 161, "3.088777e-03", 1.9996},
+    {Method::Icspm, 161, "3.088777e-03", 1.9996}, {Method::Icspm, 321, "7.722492e-04", 1.9999},
+    {Method::Icspm, 641, "1.930658e-04", 2.0000},
 };
 // seed 001, Table 2: direct, uniform, BIM with h = k^2 dx
 const PaperRow kTable2[] = {
     {Method::Bim, 11, "3.089736e+00", kNone},   {Method::Bim, 21, "3.212382e-01", 3.2658},
     {Method::Bim, 41, "4.607038e-01", -0.5202}, {Method::Bim, 81, "3.741568e-01", 0.3002},
-    {Method::Bim, 161, "2.328916e-01", 0.6840},
+    {Method::Bim, 161, "2.328916e-01", 0.6840},  {Method::Bim, 321, "1.223207e-01", 0.9290},
+    {Method::Bim, 641, "5.701353e-02", 1.1013},
 };
 // seed 001, Table 3: boundary-value problem (5.18), uniform; CSPM/ICSPM c = 2, BIM h = k^2 dx
 const PaperRow kTable3[] = {
     {Method::Cspm, 11, "8.904183e-02", kNone},   {Method::Cspm, 21, "2.483635e-02", 1.8420},
     {Method::Cspm, 41, "6.473150e-03", 1.9399},  {Method::Cspm, 81, "1.646873e-03", 1.9747},
-    {Method::Cspm, 161, "4.149916e-04", 1.9886},
+    {Method::Cspm, 161, "4.149916e-04", 1.9886}, {Method::Cspm, 321, "1.041376e-04", 1.9946},
+    {Method::Cspm, 641, "2.608189e-05", 1.9974},
     {Method::Bim, 11, "4.294576e-02", kNone},    {Method::Bim, 21, "6.346824e-03", 2.7584},
     {Method::Bim, 41, "8.987147e-03", -0.5018},  {Method::Bim, 81, "6.850803e-03", 0.3916},
-    {Method::Bim, 161, "3.860040e-03", 0.8277},
+    {Method::Bim, 161, "3.860040e-03", 0.8277},  {Method::Bim, 321, "1.885634e-03", 1.0336},
+    {Method::Bim, 641, "8.424516e-04", 1.1624},
     {Method::Icspm, 11, "5.251809e-03", kNone},  {Method::Icspm, 21, "1.267271e-03", 2.0511},
     {Method::Icspm, 41, "3.155887e-04", 2.0056}, {Method::Icspm, 81, "7.870952e-05", 2.0034},
-    {Method::Icspm, 161, "1.967555e-05", 2.0001},
+    {Method::Icspm, 161, "1.967555e-05", 2.0001}, {Method::Icspm, 321, "4.918146e-06", 2.0002},
+    {Method::Icspm, 641, "1.229500e-06", 2.0000},
 };
 
 template <std::size_t K>
 void expect_table(int number, const PaperRow (&paper)[K]) {
-  const std::vector<TableRow> ours = compute_table(paper_table(number), paper_sizes(5), 0, seed_function());
+  const std::vector<TableRow> ours = compute_table(paper_table(number), paper_sizes(7), 0, seed_function());
   ASSERT_EQ(ours.size(), K);
   for (std::size_t k = 0; k < K; ++k) {
     const PaperRow& ref = paper[k];
@@ -64,10 +73,12 @@ void expect_table(int number, const PaperRow (&paper)[K]) {
     const double e_paper = std::stod(ref.e);
     EXPECT_NEAR(row.error, e_paper, 1e-6 * e_paper) << "Table " << number << " " << method_name(ref.method)
                                                     << " N=" << ref.n;
-    char printed[32];
-    std::snprintf(printed, sizeof printed, "%.6e", row.error);
-    EXPECT_EQ(std::string(printed), std::string(ref.e)) << "Table " << number << " " << method_name(ref.method)
-                                                        << " N=" << ref.n << ": not the printed digits";
+    if (ref.n <= 161) {  // every printed digit (N = 321, 641: relative 1e-6 above)
+      char printed[32];
+      std::snprintf(printed, sizeof printed, "%.6e", row.error);
+      EXPECT_EQ(std::string(printed), std::string(ref.e)) << "Table " << number << " " << method_name(ref.method)
+                                                          << " N=" << ref.n << ": not the printed digits";
+    }
     if (!std::isnan(ref.p)) {  // printed to 4 decimals
       EXPECT_NEAR(row.order, ref.p, 0.5e-4 + 1e-9) << "Table " << number << " " << method_name(ref.method)
                                                    << " N=" << ref.n;
