@@ -44,6 +44,9 @@ Particles1D random_particles(Index n, std::uint64_t seed, Real x_left, Real x_ri
     if (xi > x_left && xi < x_right) xs.push_back(xi);  // u == 0 would duplicate x_l
   }
   std::sort(xs.begin(), xs.end());
+  // two equal draws (probability ~N^2 2^-53) would give a zero volume and 0/0 in (5.16)
+  if (std::adjacent_find(xs.begin(), xs.end()) != xs.end())
+    throw std::runtime_error("random_particles: two particles coincide; choose another seed");
   p.x = Eigen::Map<Eigen::VectorXd>(xs.data(), n);
   p.volume = midpoint_volumes(p.x);
   return p;
