@@ -106,6 +106,7 @@ TEST(ErkStepper, OutputTimesInSequenceContinueTheRun) {
   }
   ASSERT_EQ(stepper->advance(10.0, y, t), AdvanceStatus::Reached);  // t_out == t: no step
   EXPECT_NEAR(y[0], std::cos(10.0), 1e-8);
+  EXPECT_THROW(stepper->advance(9.0, y, t), std::invalid_argument);  // backwards
 }
 
 }  // namespace
