@@ -131,7 +131,9 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
       check(api_.get_root_info(mem_, roots_.data()), "GetRootInfo");
       return AdvanceStatus::RootFound;
     }
-    if (last_code_ > 0 && recover(consecutive)) continue;
+    const bool rhs_flag = flag == ARK_UNREC_RHSFUNC_ERR || flag == ARK_REPTD_RHSFUNC_ERR ||
+                          flag == ARK_FIRST_RHSFUNC_ERR;
+    if (rhs_flag && last_code_ > 0 && recover(consecutive)) continue;
     failed_ = true;
     failure_ = flag_name(flag) + " (" + std::to_string(flag) + ") at t=" +
                at_time(t) + ": " + arkode_message_;

@@ -123,6 +123,30 @@ TEST(ErkStepper, StatsCountStepsAndRhsEvaluations) {
   EXPECT_NEAR(st.last_dt, 0.01, 1e-12);
 }
 
+// Adaptive runs never step beyond cfl_safety * max_stable_dt nor max_dt.
+TEST(ErkStepper, AdaptiveStepRespectsMaxStableDtAndMaxDt) {
+  struct Cfl : Oscillator {
+    Real max_stable_dt(Real, const Real*) noexcept override { return 0.02; }
+  } sys;
+  const Real y0[2] = {1, 0};
+  StepperOptions o = options("ARKODE_DORMAND_PRINCE_7_4_5", 1e-3);
+  o.cfl_safety = 0.5;
+  auto stepper = make_stepper(sys, o, 0, y0);
+  Real y[2], t = 0;
+  ASSERT_EQ(stepper->advance(1.0, y, t), AdvanceStatus::Reached);
+  EXPECT_GE(stepper->stats().steps, 100);  // dt <= 0.5 * 0.02
+  Oscillator free_sys;
+  o.max_dt = 0.04;
+  stepper = make_stepper(free_sys, o, 0, y0);
+  ASSERT_EQ(stepper->advance(1.0, y, t), AdvanceStatus::Reached);
+  EXPECT_GE(stepper->stats().steps, 25);
+  EXPECT_LE(stepper->stats().last_dt, 0.04);
+  o.max_dt = 0;
+  stepper = make_stepper(free_sys, o, 0, y0);
+  ASSERT_EQ(stepper->advance(1.0, y, t), AdvanceStatus::Reached);
+  EXPECT_LT(stepper->stats().steps, 25);  // unbounded: ARKODE's error control alone
+}
+
 TEST(ErkStepper, OutputTimesInSequenceContinueTheRun) {
   Oscillator sys;
   const Real y0[2] = {1, 0};
