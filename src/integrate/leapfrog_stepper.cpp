@@ -183,8 +183,7 @@ class LeapfrogStepper final : public Stepper {
   void accept(Real dt, Real t_landed = NAN) {
     std::swap(y_, y_new_);
     std::swap(dy_, dy_new_);
-    if (!g_.empty() && roots_.empty()) std::swap(g_, g_new_);
-    if (!roots_.empty()) std::copy(g_new_.begin(), g_new_.end(), g_.begin());
+    std::swap(g_, g_new_);  // g_new_ holds g at the accepted state (when there are roots)
     if (std::isnan(t_landed)) {
       const Real increment = dt - t_lost_, t_new = t_ + increment;
       t_lost_ = (t_new - t_) - increment;
