@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <limits>
 #include <stdexcept>
 
@@ -20,6 +22,12 @@ std::string at_time(Real t) {
 
 }  // namespace
 
+// *GetReturnFlagName returns a malloc'ed string owned by the caller.
+std::string ArkodeStepper::flag_name(int flag) const {
+  std::unique_ptr<char, decltype(&std::free)> name(api_.flag_name(flag), &std::free);
+  return name ? std::string(name.get()) : "flag " + std::to_string(flag);
+}
+
 ArkodeStepper::ArkodeStepper(OdeSystem& system, const StepperOptions& opts, const ArkodeApi& api,
                              Real t0, const Real* y0)
     : system_(system),
@@ -33,7 +41,7 @@ ArkodeStepper::ArkodeStepper(OdeSystem& system, const StepperOptions& opts, cons
 
 void ArkodeStepper::check(int flag, const char* call) const {
   if (flag < 0)
-    throw std::runtime_error(std::string(api_.module) + call + " failed: " + api_.flag_name(flag) +
+    throw std::runtime_error(std::string(api_.module) + call + " failed: " + flag_name(flag) +
                              (arkode_message_.empty() ? "" : " (" + arkode_message_ + ")"));
 }
 
@@ -102,6 +110,7 @@ bool ArkodeStepper::recover(int& consecutive) {
 AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
   const std::size_t n = system_.size();
   roots_.clear();
+  if (t_out < t_last_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_last_));
   if (failed_ || t_out == t_last_) {
     std::copy(y_last_.begin(), y_last_.end(), y);
     t = t_last_;
@@ -122,9 +131,11 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
       check(api_.get_root_info(mem_, roots_.data()), "GetRootInfo");
       return AdvanceStatus::RootFound;
     }
-    if (last_code_ > 0 && recover(consecutive)) continue;
+    const bool rhs_flag = flag == ARK_UNREC_RHSFUNC_ERR || flag == ARK_REPTD_RHSFUNC_ERR ||
+                          flag == ARK_FIRST_RHSFUNC_ERR;
+    if (rhs_flag && last_code_ > 0 && recover(consecutive)) continue;
     failed_ = true;
-    failure_ = std::string(api_.flag_name(flag)) + " (" + std::to_string(flag) + ") at t=" +
+    failure_ = flag_name(flag) + " (" + std::to_string(flag) + ") at t=" +
                at_time(t) + ": " + arkode_message_;
     if (!callback_error_.empty()) failure_ += "; " + callback_error_;
     if (consecutive > kMaxRecoveries)

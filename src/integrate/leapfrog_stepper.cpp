@@ -42,6 +42,7 @@ class LeapfrogStepper final : public Stepper {
 
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
     roots_.clear();
+    if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
     if (!failed_ && !started_) start();
     while (!failed_ && t_ < t_out) {
       Real dt = choose_dt();
@@ -182,8 +183,7 @@ class LeapfrogStepper final : public Stepper {
   void accept(Real dt, Real t_landed = NAN) {
     std::swap(y_, y_new_);
     std::swap(dy_, dy_new_);
-    if (!g_.empty() && roots_.empty()) std::swap(g_, g_new_);
-    if (!roots_.empty()) std::copy(g_new_.begin(), g_new_.end(), g_.begin());
+    std::swap(g_, g_new_);  // g_new_ holds g at the accepted state (when there are roots)
     if (std::isnan(t_landed)) {
       const Real increment = dt - t_lost_, t_new = t_ + increment;
       t_lost_ = (t_new - t_) - increment;

@@ -10,6 +10,60 @@
 
 namespace sphark::test {
 
+// Kepler problem q'' = -q / |q|^3, eccentricity e, period 2 pi: y = (q1, q2, p1, p2).
+// Exact solution through Kepler's equation E - e sin E = t.
+class Kepler : public OdeSystem {
+ public:
+  explicit Kepler(Real e) : e_(e) {}
+  std::size_t size() const override { return 4; }
+  int rhs(Real, const Real* y, Real* ydot) noexcept override {
+    const Real r = std::hypot(y[0], y[1]), r3 = r * r * r;
+    ydot[0] = y[2];
+    ydot[1] = y[3];
+    ydot[2] = -y[0] / r3;
+    ydot[3] = -y[1] / r3;
+    return 0;
+  }
+  std::size_t position_offset() const override { return 0; }
+  std::size_t velocity_offset() const override { return 2; }
+  std::size_t position_size() const override { return 2; }
+  std::vector<Real> exact(Real t) const {
+    Real E = t;
+    for (int i = 0; i < 50; ++i) E -= (E - e_ * std::sin(E) - t) / (1 - e_ * std::cos(E));
+    const Real s = std::sqrt(1 - e_ * e_), d = 1 - e_ * std::cos(E);
+    return {std::cos(E) - e_, s * std::sin(E), -std::sin(E) / d, s * std::cos(E) / d};
+  }
+
+ private:
+  Real e_;
+};
+
+// Damped oscillator with an extra evolved field (like an SPH energy equation):
+// x' = v, v' = -x - g v, e' = -g v^2, so e = (x^2 + v^2 - 1) / 2 for y0 = (1, 0, 0).
+class DampedWithEnergy : public OdeSystem {
+ public:
+  explicit DampedWithEnergy(Real g) : g_(g) {}
+  std::size_t size() const override { return 3; }
+  int rhs(Real, const Real* y, Real* ydot) noexcept override {
+    ydot[0] = y[1];
+    ydot[1] = -y[0] - g_ * y[1];
+    ydot[2] = -g_ * y[1] * y[1];
+    return 0;
+  }
+  std::size_t position_offset() const override { return 0; }
+  std::size_t velocity_offset() const override { return 1; }
+  std::size_t position_size() const override { return 1; }
+  std::vector<Real> exact(Real t) const {
+    const Real w = std::sqrt(1 - g_ * g_ / 4), a = std::exp(-g_ * t / 2);
+    const Real x = a * (std::cos(w * t) + g_ / (2 * w) * std::sin(w * t));
+    const Real v = -a * std::sin(w * t) / w;
+    return {x, v, 0.5 * (x * x + v * v - 1)};
+  }
+
+ private:
+  Real g_;
+};
+
 // x'' = -x as y = (x, v): x = cos t, v = -sin t for y0 = (1, 0).
 class Oscillator : public OdeSystem {
  public:

@@ -41,6 +41,7 @@ class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
   // Advance to t_out. y (size system.size()) receives the state at t: t == t_out unless a root
   // was found (RootFound) or the integration failed (Failed: y, t = last good state).
   // The stepper keeps its own state: the content of y on entry is ignored.
+  // Throws std::invalid_argument if t_out is before the current time.
   virtual AdvanceStatus advance(Real t_out, Real* y, Real& t) = 0;
   virtual StepperStats stats() const = 0;
   // After Failed: flag name + message, time, and system.last_error().
