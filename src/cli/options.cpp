@@ -71,6 +71,36 @@ std::function<bool(std::string_view)> integer_assign(Int* target, NumberConstrai
   };
 }
 
+// Splits "a,b,c" and parses every element with `one`; nullopt if any element fails or s is empty.
+template <class T, class ParseOne>
+std::optional<std::vector<T>> parse_list(std::string_view s, ParseOne one) {
+  std::vector<T> out;
+  if (s.empty()) return std::nullopt;
+  for (std::size_t start = 0;;) {
+    const std::size_t end = std::min(s.find(',', start), s.size());
+    const auto v = one(s.substr(start, end - start));
+    if (!v) return std::nullopt;
+    out.push_back(*v);
+    if (end == s.size()) return out;
+    start = end + 1;
+  }
+}
+
+std::string plural_expected(const NumberConstraint& c, bool integer) {
+  std::string text = "a comma-separated list of ";
+  if (std::holds_alternative<Positive>(c)) text += "positive ";
+  if (std::holds_alternative<NonNegative>(c)) text += "non-negative ";
+  text += integer ? "integers" : "real numbers";
+  if (const Range* r = std::get_if<Range>(&c)) {
+    text += " in [";
+    text += real_text(r->lo);
+    text += ", ";
+    text += real_text(r->hi);
+    text += ']';
+  }
+  return text;
+}
+
 }  // namespace
 
 void exit_usage_error(std::string_view program, std::string_view option,
@@ -159,6 +189,50 @@ void OptionParser::add(std::string name, std::filesystem::path* target, std::str
     return true;
   };
   add_option({std::move(name), "DIR", std::move(help), target->string(), "a path", assign});
+}
+
+void OptionParser::add(std::string name, std::vector<Real>* target, std::string help,
+                       NumberConstraint c) {
+  std::string def;
+  for (Real v : *target) {
+    if (!std::isfinite(v) || !satisfies(v, c)) {
+      throw std::logic_error("OptionParser: default of " + name + " violates its constraint");
+    }
+    if (!def.empty()) def += ',';
+    def += real_text(v);
+  }
+  auto assign = [target, c](std::string_view s) {
+    auto v = parse_list<Real>(s, [&c](std::string_view e) -> std::optional<Real> {
+      const auto x = parse_real(e);
+      return x && satisfies(*x, c) ? x : std::nullopt;
+    });
+    if (v) *target = std::move(*v);
+    return v.has_value();
+  };
+  add_option({std::move(name), "LIST", std::move(help), def.empty() ? "none" : def,
+              plural_expected(c, false), assign});
+}
+
+void OptionParser::add(std::string name, std::vector<int>* target, std::string help,
+                       NumberConstraint c) {
+  std::string def;
+  for (int v : *target) {
+    if (!satisfies(v, c)) {
+      throw std::logic_error("OptionParser: default of " + name + " violates its constraint");
+    }
+    if (!def.empty()) def += ',';
+    def += std::to_string(v);
+  }
+  auto assign = [target, c](std::string_view s) {
+    auto v = parse_list<int>(s, [&c](std::string_view e) -> std::optional<int> {
+      int x = 0;
+      return integer_assign(&x, c)(e) ? std::optional<int>(x) : std::nullopt;
+    });
+    if (v) *target = std::move(*v);
+    return v.has_value();
+  };
+  add_option({std::move(name), "LIST", std::move(help), def.empty() ? "none" : def,
+              plural_expected(c, true), assign});
 }
 
 void OptionParser::add_flag(std::string name, bool* target, std::string help,

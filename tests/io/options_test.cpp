@@ -157,6 +157,33 @@ TEST(Options, HelpListsEveryOptionWithDefaultAndMeaning) {
   }
 }
 
+TEST(Options, CommaSeparatedLists) {
+  std::vector<Real> widths = {0.5, 1};
+  std::vector<int> resolutions = {25, 50};
+  auto parse = [&](std::vector<const char*> argv) {
+    OptionParser p("conv", "convergence study");
+    p.add("--widths", &widths, "kernel widths", Positive{});
+    p.add("--n", &resolutions, "resolutions", Range{2, 4096});
+    argv.insert(argv.begin(), "conv");
+    ::testing::internal::CaptureStderr();
+    const ParseStatus s = p.parse(static_cast<int>(argv.size()), argv.data());
+    return std::pair{s, ::testing::internal::GetCapturedStderr()};
+  };
+  auto [ok, err] = parse({"--widths", "1.2,1.5,2", "--n=25,50,100,200"});
+  EXPECT_EQ(ok, ParseStatus::ok) << err;
+  EXPECT_EQ(widths, (std::vector<Real>{1.2, 1.5, 2}));
+  EXPECT_EQ(resolutions, (std::vector<int>{25, 50, 100, 200}));
+  EXPECT_EQ(parse({"--widths", "1,-2"}).second,
+            "conv: --widths: bad value '1,-2' (expected a comma-separated list of positive real "
+            "numbers)\n");
+  EXPECT_EQ(parse({"--widths", "1,,2"}).first, ParseStatus::usage_error);
+  EXPECT_EQ(parse({"--widths", "1,nan"}).first, ParseStatus::usage_error);
+  EXPECT_EQ(parse({"--n", "25,1"}).second,
+            "conv: --n: bad value '25,1' (expected a comma-separated list of integers in "
+            "[2, 4096])\n");
+  EXPECT_EQ(widths, (std::vector<Real>{1.2, 1.5, 2}));  // failed parses assign nothing
+}
+
 TEST(Options, ProgrammerErrorsThrow) {
   OptionParser p("x", "y");
   Real bad = -1, good = 1;

@@ -52,6 +52,9 @@ class OptionParser {
   void add(std::string name, long* target, std::string help, NumberConstraint c = {});
   void add(std::string name, std::string* target, std::string help, OneOf allowed = {});
   void add(std::string name, std::filesystem::path* target, std::string help);
+  // Comma-separated lists ("--resolutions 25,50,100"); every element meets the constraint.
+  void add(std::string name, std::vector<Real>* target, std::string help, NumberConstraint c = {});
+  void add(std::string name, std::vector<int>* target, std::string help, NumberConstraint c = {});
   void add(std::string name, bool* target, std::string help) = delete;  // use flag / switch
   // "--name": sets *target = value_when_given (e.g. --no-render sets render = false).
   void add_flag(std::string name, bool* target, std::string help, bool value_when_given = true);
