@@ -10,7 +10,10 @@
 namespace sphark {
 
 std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
-  std::string name = "." + path.filename().string() + ".tmp." + std::to_string(::getpid());
+  std::string name = ".";  // (appended stepwise: "." + std::string trips GCC 12 -Wrestrict)
+  name += path.filename().string();
+  name += ".tmp.";
+  name += std::to_string(::getpid());
   return path.parent_path() / name;
 }
 
