@@ -1,0 +1,115 @@
+// Neighbour lists against brute force (open and periodic boxes, 1-3D), and Verlet-skin reuse.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "sphark/neighbours/neighbour_search.hpp"
+
+using namespace sphark;
+
+namespace {
+template <int D>
+std::vector<Real> random_points(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<Real> u(0.0, 1.0);
+  std::vector<Real> x(D * n);
+  for (auto& v : x) v = u(rng);
+  return x;
+}
+
+template <int D>
+void expect_matches_brute_force(const NeighbourSearch<D>& ns, const std::vector<Real>& x, Real r) {
+  const std::size_t n = x.size() / D;
+  const auto& L = ns.list();
+  ASSERT_EQ(L.particles(), n);
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<std::uint32_t> expect;
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i && ns.separation(x.data(), i, j).norm() < r) expect.push_back(static_cast<std::uint32_t>(j));
+    std::vector<std::uint32_t> got(L.indices.begin() + L.begin(i), L.indices.begin() + L.end(i));
+    ASSERT_EQ(got, expect) << "particle " << i;
+    total += expect.size();
+  }
+  EXPECT_GT(total, n);  // the test is not vacuous
+}
+
+template <int D>
+void check(bool periodic) {
+  const auto x = random_points<D>(D == 1 ? 200 : 600, 42 + D);
+  const Real r = D == 1 ? 0.03 : D == 2 ? 0.08 : 0.17;
+  std::optional<PeriodicBox<D>> box;
+  if (periodic) {
+    PeriodicBox<D> b;
+    b.periodic.fill(true);
+    box = b;
+  }
+  NeighbourSearch<D> ns(box);
+  ns.build(x.data(), x.size() / D, r);
+  expect_matches_brute_force(ns, x, r);
+}
+}  // namespace
+
+TEST(NeighbourSearch, MatchesBruteForceOpen) {
+  check<1>(false);
+  check<2>(false);
+  check<3>(false);
+}
+
+TEST(NeighbourSearch, MatchesBruteForcePeriodic) {
+  check<1>(true);
+  check<2>(true);
+  check<3>(true);
+}
+
+TEST(NeighbourSearch, MixedPeriodicity) {
+  const auto x = random_points<2>(500, 7);
+  PeriodicBox<2> b;
+  b.periodic = {true, false};
+  NeighbourSearch<2> ns(b);
+  ns.build(x.data(), 500, 0.1);
+  expect_matches_brute_force(ns, x, 0.1);
+}
+
+TEST(NeighbourSearch, RejectsBoxShorterThanTwoRadii) {
+  PeriodicBox<2> b;
+  b.periodic = {true, true};
+  NeighbourSearch<2> ns(b);
+  const auto x = random_points<2>(10, 1);
+  EXPECT_THROW(ns.build(x.data(), 10, 0.6), std::invalid_argument);
+}
+
+TEST(NeighbourSearch, SkinKeepsEveryPairWhileDisplacementBelowHalfSkin) {
+  const Real r = 0.08, skin = 0.02;
+  auto x = random_points<2>(800, 3);
+  PeriodicBox<2> b;
+  b.periodic = {true, true};
+  NeighbourSearch<2> ns(b);
+  ns.build(x.data(), 800, r + skin);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<Real> u(-1.0, 1.0);
+  for (auto& v : x) v += 0.49 * skin / std::sqrt(2.0) * u(rng);  // |displacement| < skin/2
+  ASSERT_LT(ns.max_displacement_since_build(x.data()), skin / 2);
+  // every pair now within r must be in the (old) lists
+  const auto& L = ns.list();
+  for (std::size_t i = 0; i < 800; ++i)
+    for (std::size_t j = 0; j < 800; ++j) {
+      if (i == j || ns.separation(x.data(), i, j).norm() >= r) continue;
+      const auto first = L.indices.begin() + L.begin(i), last = L.indices.begin() + L.end(i);
+      EXPECT_TRUE(std::binary_search(first, last, static_cast<std::uint32_t>(j))) << i << "," << j;
+    }
+}
+
+TEST(NeighbourSearch, QueryFindsPointsOfTheBuiltSet) {
+  const auto x = random_points<3>(400, 5);
+  NeighbourSearch<3> ns;
+  ns.build(x.data(), 400, 0.2);
+  const Vec<3> p(0.5, 0.5, 0.5);
+  std::vector<std::uint32_t> got;
+  ns.query(p, 0.25, got);
+  std::vector<std::uint32_t> expect;
+  for (std::uint32_t j = 0; j < 400; ++j)
+    if ((Eigen::Map<const Vec<3>>(x.data() + 3 * j) - p).norm() < 0.25) expect.push_back(j);
+  EXPECT_EQ(got, expect);
+  EXPECT_FALSE(expect.empty());
+}
