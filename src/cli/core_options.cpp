@@ -13,7 +13,7 @@
 namespace sphark {
 
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers) {
-  p.add("--out", &o.out, "output directory, created with its parents");
+  p.add("--out", &o.out, "output directory, created with its parents", "DIR");
   p.add("--t-end", &o.t_end, "end time", Positive{});
   p.add("--stepper", &o.stepper, "time integrator", OneOf{std::move(steppers)});
   p.add("--rtol", &o.rtol, "relative tolerance of the adaptive step", Positive{});

@@ -17,7 +17,13 @@ std::string real_text(Real v) {  // shortest text that reads back to v
   return std::string(buf, r.ptr);
 }
 
+// from_chars takes no leading '+'; accept one ("+1e-3"), but not "+-1".
+std::string_view without_plus(std::string_view s) {
+  return s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+' ? s.substr(1) : s;
+}
+
 std::optional<Real> parse_real(std::string_view s) {
+  s = without_plus(s);
   Real v = 0;
   auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) {
@@ -27,6 +33,7 @@ std::optional<Real> parse_real(std::string_view s) {
 }
 
 std::optional<long> parse_long(std::string_view s) {
+  s = without_plus(s);
   long v = 0;
   auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
@@ -182,13 +189,16 @@ void OptionParser::add(std::string name, std::string* target, std::string help, 
               listed ? "one of: " + join(vals, ", ") : "a non-empty string", assign});
 }
 
-void OptionParser::add(std::string name, std::filesystem::path* target, std::string help) {
+void OptionParser::add(std::string name, std::filesystem::path* target, std::string help,
+                       std::string metavar) {
   auto assign = [target](std::string_view s) {
     if (s.empty()) return false;
     *target = std::filesystem::path(std::string(s));
     return true;
   };
-  add_option({std::move(name), "DIR", std::move(help), target->string(), "a path", assign});
+  if (metavar.empty()) metavar = "PATH";  // an empty metavar would mark a flag
+  add_option({std::move(name), std::move(metavar), std::move(help), target->string(), "a path",
+              assign});
 }
 
 void OptionParser::add(std::string name, std::vector<Real>* target, std::string help,

@@ -78,7 +78,7 @@ TEST(Options, ParsesEveryType) {
   Real alpha = 1;
   const Parsed r = run({"--out", "results/a", "--t-end=0.25", "--stepper", "leapfrog",
                         "--rtol", "1e-8", "--atol=3.5e-12", "--dt", "0", "--output-every",
-                        "0.01", "--threads", "2", "--no-render", "--seed", "17", "--kernel",
+                        "+0.01", "--threads", "+2", "--no-render", "--seed", "17", "--kernel",
                         "wendland-c2", "--cleaning", "off", "--alpha", "-0.5"},
                        o, &seed, &kernel, &cleaning, &alpha);
   ASSERT_EQ(r.status, ParseStatus::ok) << r.err;
@@ -130,6 +130,8 @@ TEST(Options, EachBadInputIsOneLine) {
                      "water_drop: --rtol: bad value '-infinity' (expected a positive real number)");
   expect_usage_error({"--alpha", "1e400"},
                      "water_drop: --alpha: bad value '1e400' (expected a real number)");
+  expect_usage_error({"--rtol", "+-1"},
+                     "water_drop: --rtol: bad value '+-1' (expected a positive real number)");
   expect_usage_error({"--threads", "1.5"},
                      "water_drop: --threads: bad value '1.5' (expected a non-negative integer)");
   expect_usage_error({"--threads", "99999999999"},

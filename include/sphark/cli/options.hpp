@@ -52,7 +52,8 @@ class OptionParser {
   void add(std::string name, int* target, std::string help, NumberConstraint c = {});
   void add(std::string name, long* target, std::string help, NumberConstraint c = {});
   void add(std::string name, std::string* target, std::string help, OneOf allowed = {});
-  void add(std::string name, std::filesystem::path* target, std::string help);
+  void add(std::string name, std::filesystem::path* target, std::string help,
+           std::string metavar = "PATH");
   // Comma-separated lists ("--resolutions 25,50,100"); every element meets the constraint.
   void add(std::string name, std::vector<Real>* target, std::string help, NumberConstraint c = {});
   void add(std::string name, std::vector<int>* target, std::string help, NumberConstraint c = {});
