@@ -4,7 +4,9 @@ r"""Render sphark particle frames (.vtp, or frames of a .pvd series) to PNG.
 VTK renders the points offscreen (vtkRenderWindow, SetOffScreenRendering(1), parallel
 projection onto a known world rectangle); matplotlib frames that image with true x/y axes, a
 colour bar and a title with the time. Points are coloured by a named point array (vectors by
-magnitude, or --component). 2D scenes (all z = 0) are viewed from +z. VTK needs a display:
+magnitude, or --component). 2D scenes (all z = 0) are viewed from +z; 1D frames (y = z = 0)
+are plotted as the value against x; 3D frames get an oblique view without axes. VTK needs a
+display:
 run under `xvfb-run -a /usr/bin/python3 ...` when $DISPLAY is unset.
 
 One picture:
@@ -104,6 +106,27 @@ def median_spacing(vtk, poly):
     return d[len(d) // 2] or None
 
 
+ZOOM_3D = 1.3
+
+
+def point_size_3d(bounds, spacing, height_px, view_angle_deg=30.0):
+    """Pixels per particle spacing at the focal plane after ResetCamera + Zoom(ZOOM_3D): the
+    camera sits at r / sin(a/2) from the centre of the bounding sphere of radius r, so the
+    focal plane shows a height of 2 r / cos(a/2) / ZOOM_3D."""
+    r = 0.5 * math.dist(bounds[0::2], bounds[1::2])
+    half = math.radians(view_angle_deg) / 2
+    return spacing * height_px * ZOOM_3D * math.cos(half) / (2 * r) if r > 0 else 4.0
+
+
+def values_of(arr, comp):
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import numpy as np
+    v = vtk_to_numpy(arr)
+    if v.ndim == 1:
+        return v
+    return np.linalg.norm(v, axis=1) if comp == -1 else v[:, comp]
+
+
 def render_points(vtk, poly, name, comp, lo, hi, cmap, rect, px, point_size, flat):
     """RGB image (numpy, rows top to bottom) of the points; rect = (x0, x1, y0, y1) world."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -149,11 +172,33 @@ def render_points(vtk, poly, name, comp, lo, hi, cmap, rect, px, point_size, fla
         cam.SetViewUp(0, 1, 0)
         cam.SetParallelScale(0.5 * (rect[3] - rect[2]))
         cam.SetClippingRange(0.5, 1.5)
-    else:
+    else:  # oblique perspective view, z up, of the bounding sphere (see point_size_3d)
         ren.ResetCamera()
-        cam.Azimuth(30)
-        cam.Elevation(25)
+        fx, fy, fz = cam.GetFocalPoint()
+        d = cam.GetDistance()
+        az, el = math.radians(-60), math.radians(25)
+        cam.SetPosition(fx + d * math.cos(el) * math.cos(az), fy + d * math.cos(el) * math.sin(az),
+                        fz + d * math.sin(el))
+        cam.SetViewUp(0, 0, 1)
+        cam.Zoom(ZOOM_3D)
         ren.ResetCameraClippingRange()
+        # x/y/z triad in the lower-left corner, seen from the same direction.
+        triad = vtk.vtkRenderer()
+        triad.SetViewport(0, 0, 0.2, 0.2)
+        triad.SetBackground(1, 1, 1)
+        axes = vtk.vtkAxesActor()
+        for cap in (axes.GetXAxisCaptionActor2D(), axes.GetYAxisCaptionActor2D(),
+                    axes.GetZAxisCaptionActor2D()):
+            cap.GetCaptionTextProperty().SetColor(0, 0, 0)
+            cap.GetCaptionTextProperty().ShadowOff()
+        triad.AddActor(axes)
+        tc = triad.GetActiveCamera()
+        tc.SetFocalPoint(0, 0, 0)
+        tc.SetPosition(4 * math.cos(el) * math.cos(az), 4 * math.cos(el) * math.sin(az),
+                       4 * math.sin(el))
+        tc.SetViewUp(0, 0, 1)
+        triad.ResetCameraClippingRange()
+        window.AddRenderer(triad)
     window.Render()
     grab = vtk.vtkWindowToImageFilter()
     grab.SetInput(window)
@@ -261,26 +306,38 @@ def main():
         # Axes box in pixels (about 70 % x 80 % of the panel) sets the render resolution.
         box_w, box_h = 0.68 * size[0] / cols, 0.72 * size[1] / rows
         spacing = median_spacing(vtk, poly) or 0.02 * max(b[1] - b[0], b[3] - b[2], 1.0)
+        if flat and b[2] == b[3] == 0.0:  # 1D: the value against x, no picture needed
+            from vtkmodules.util.numpy_support import vtk_to_numpy
+            x = vtk_to_numpy(poly.GetPoints().GetData())[:, 0]
+            order = x.argsort()
+            ax.plot(x[order], values_of(arr, comp)[order], ".-", markersize=3, linewidth=0.6)
+            ax.set_xlabel("x")
+            ax.set_ylabel(label(a, arr, args.component))
+            ax.set_ylim(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo))
+            ax.grid(True, alpha=0.35)
+            when = f"   t = {time:.6g}" if time is not None and math.isfinite(time) else ""
+            ax.set_title(label(a, arr, args.component) + when, fontsize=10)
+            ax.tick_params(labelsize=8)
+            continue
         if flat:
             margin = 0.6 * spacing + 0.02 * max(b[1] - b[0], b[3] - b[2])
             x0, x1, y0, y1 = b[0] - margin, b[1] + margin, b[2] - margin, b[3] + margin
-            if b[3] == b[2]:  # 1D data: a thin strip
-                y0, y1 = -0.05 * (x1 - x0), 0.05 * (x1 - x0)
             scale = 2 * min(box_w / (x1 - x0), box_h / (y1 - y0))  # render pixels per unit
             px = (max(int((x1 - x0) * scale), 16), max(int((y1 - y0) * scale), 16))
             x1 = x0 + px[0] / scale  # exact world rectangle of the pixel grid
             y1 = y0 + px[1] / scale
             ps = args.point_size * 2 if args.point_size else max(spacing * scale, 2.0)
             img = render_points(vtk, poly, a, comp, lo, hi, cmap, (x0, x1, y0, y1), px, ps, True)
-            im = ax.imshow(img, extent=(x0, x1, y0, y1), origin="upper", interpolation="antialiased")
+            ax.imshow(img, extent=(x0, x1, y0, y1), origin="upper", interpolation="antialiased")
             ax.set_xlabel("x")
             ax.set_ylabel("y")
             ax.set_aspect("equal")
         else:
             px = (int(2 * box_w), int(2 * box_h))
-            ps = args.point_size * 2 if args.point_size else 4.0
+            ps = args.point_size * 2 if args.point_size else \
+                max(point_size_3d(b, spacing, px[1]), 2.0)
             img = render_points(vtk, poly, a, comp, lo, hi, cmap, None, px, ps, False)
-            im = ax.imshow(img)
+            ax.imshow(img)
             ax.set_axis_off()
         mappable = matplotlib.cm.ScalarMappable(matplotlib.colors.Normalize(lo, hi), cmap)
         from mpl_toolkits.axes_grid1 import make_axes_locatable

@@ -7,12 +7,13 @@
 #include <system_error>
 
 #include "sphark/cli/options.hpp"
-#include "sphark/io/csv_writer.hpp"  // temporary_sibling
+#include "sphark/integrate/stepper.hpp"  // erk_table_names
+#include "sphark/io/csv_writer.hpp"        // temporary_sibling
 
 namespace sphark {
 
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers) {
-  p.add("--out", &o.out, "output directory, created with its parents");
+  p.add("--out", &o.out, "output directory, created with its parents", "DIR");
   p.add("--t-end", &o.t_end, "end time", Positive{});
   p.add("--stepper", &o.stepper, "time integrator", OneOf{std::move(steppers)});
   p.add("--rtol", &o.rtol, "relative tolerance of the adaptive step", Positive{});
@@ -22,6 +23,26 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
         "simulated time between output frames, 0 = first and last only", NonNegative{});
   p.add("--threads", &o.threads, "OpenMP threads, 0 = OpenMP default", NonNegative{});
   p.add_flag("--no-render", &o.render, "do not render pictures at the end", false);
+}
+
+void add_core_options(OptionParser& p, CoreOptions& o) {
+  add_core_options(p, o, core_stepper_names());
+}
+
+std::vector<std::string> core_stepper_names() {
+  std::vector<std::string> names = erk_table_names();
+  names.push_back("ark-imex");
+  names.push_back("leapfrog");
+  return names;
+}
+
+StepperOptions stepper_options(const CoreOptions& o) {
+  StepperOptions s;
+  s.method = o.stepper;
+  s.rtol = o.rtol;
+  s.atol = {o.atol};
+  s.fixed_dt = o.dt;
+  return s;
 }
 
 void apply_thread_count(int threads) {

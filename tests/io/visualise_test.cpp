@@ -1,6 +1,7 @@
 // run_python: finds vis/ from SPHARK_SOURCE_DIR, reports failure with false (never aborts).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -19,6 +20,21 @@ TEST(RunPython, MissingScriptIsAWarningNotAnAbort) {
   const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(err.rfind("sphark: warning: vis/no_such_script.py: script not found", 0), 0u) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
+}
+
+TEST(RunProcess, TimeoutKillsTheProcessGroup) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // A shell whose child (sleep) shares its process group: both must go.
+  const ProcessResult r = run_process({"/bin/sh", "-c", "sleep 30; exit 0"}, 0.3);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error, "still running after 0.3 s, killed");
+  EXPECT_LT(s, 3.0);
+  EXPECT_TRUE(run_process({"/bin/sh", "-c", "exit 0"}, 10).ok);
+  EXPECT_EQ(run_process({"/bin/sh", "-c", "exit 3"}, 10).error, "exited with status 3");
+  EXPECT_EQ(run_process({"/bin/sh", "-c", "kill -9 $$"}, 10).error, "killed by signal 9");
+  EXPECT_EQ(run_process({"/no/such/program"}, 10).error,
+            "cannot start /no/such/program: No such file or directory");
 }
 
 TEST(RunPython, ExitStatusDecidesTheResult) {
