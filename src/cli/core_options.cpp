@@ -7,12 +7,13 @@
 #include <system_error>
 
 #include "sphark/cli/options.hpp"
-#include "sphark/io/csv_writer.hpp"  // temporary_sibling
+#include "sphark/integrate/stepper.hpp"  // erk_table_names
+#include "sphark/io/csv_writer.hpp"        // temporary_sibling
 
 namespace sphark {
 
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers) {
-  p.add("--out", &o.out, "output directory (created with its parents)");
+  p.add("--out", &o.out, "output directory, created with its parents", "DIR");
   p.add("--t-end", &o.t_end, "end time", Positive{});
   p.add("--stepper", &o.stepper, "time integrator", OneOf{std::move(steppers)});
   p.add("--rtol", &o.rtol, "relative tolerance of the adaptive step", Positive{});
@@ -24,22 +25,52 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
   p.add_flag("--no-render", &o.render, "do not render pictures at the end", false);
 }
 
+void add_core_options(OptionParser& p, CoreOptions& o) {
+  add_core_options(p, o, core_stepper_names());
+}
+
+std::vector<std::string> core_stepper_names() {
+  std::vector<std::string> names = erk_table_names();
+  names.push_back("ark-imex");
+  names.push_back("leapfrog");
+  return names;
+}
+
+StepperOptions stepper_options(const CoreOptions& o) {
+  StepperOptions s;
+  s.method = o.stepper;
+  s.rtol = o.rtol;
+  s.atol = {o.atol};
+  s.fixed_dt = o.dt;
+  return s;
+}
+
 void apply_thread_count(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
 }
+
+namespace {
+// "'<path>'", built stepwise (operator+("'", std::string) trips GCC 12's -Wrestrict).
+std::string quoted(const std::filesystem::path& p) {
+  std::string q = "'";
+  q += p.string();
+  q += '\'';
+  return q;
+}
+}  // namespace
 
 std::optional<std::string> output_dir_problem(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   if (dir.empty()) return "empty directory name";
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) return "cannot create '" + dir.string() + "': " + ec.message();
-  if (!fs::is_directory(dir, ec)) return "'" + dir.string() + "' is not a directory";
+  if (ec) return "cannot create " + quoted(dir) + ": " + ec.message();
+  if (!fs::is_directory(dir, ec)) return quoted(dir) + " is not a directory";
   // Probe: create and remove a file (access(2) is not reliable, e.g. when running as root on a
   // read-only mount).
   const fs::path probe = temporary_sibling(dir / "write_probe");
   std::FILE* f = std::fopen(probe.c_str(), "w");
-  if (!f) return "cannot write in '" + dir.string() + "': " + std::strerror(errno);
+  if (!f) return "cannot write in " + quoted(dir) + ": " + std::strerror(errno);
   std::fclose(f);
   fs::remove(probe, ec);
   return std::nullopt;

@@ -17,7 +17,13 @@ std::string real_text(Real v) {  // shortest text that reads back to v
   return std::string(buf, r.ptr);
 }
 
+// from_chars takes no leading '+'; accept one ("+1e-3"), but not "+-1".
+std::string_view without_plus(std::string_view s) {
+  return s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+' ? s.substr(1) : s;
+}
+
 std::optional<Real> parse_real(std::string_view s) {
+  s = without_plus(s);
   Real v = 0;
   auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) {
@@ -27,6 +33,7 @@ std::optional<Real> parse_real(std::string_view s) {
 }
 
 std::optional<long> parse_long(std::string_view s) {
+  s = without_plus(s);
   long v = 0;
   auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
@@ -69,6 +76,36 @@ std::function<bool(std::string_view)> integer_assign(Int* target, NumberConstrai
     *target = static_cast<Int>(*v);
     return true;
   };
+}
+
+// Splits "a,b,c" and parses every element with `one`; nullopt if any element fails or s is empty.
+template <class T, class ParseOne>
+std::optional<std::vector<T>> parse_list(std::string_view s, ParseOne one) {
+  std::vector<T> out;
+  if (s.empty()) return std::nullopt;
+  for (std::size_t start = 0;;) {
+    const std::size_t end = std::min(s.find(',', start), s.size());
+    const auto v = one(s.substr(start, end - start));
+    if (!v) return std::nullopt;
+    out.push_back(*v);
+    if (end == s.size()) return out;
+    start = end + 1;
+  }
+}
+
+std::string plural_expected(const NumberConstraint& c, bool integer) {
+  std::string text = "a comma-separated list of ";
+  if (std::holds_alternative<Positive>(c)) text += "positive ";
+  if (std::holds_alternative<NonNegative>(c)) text += "non-negative ";
+  text += integer ? "integers" : "real numbers";
+  if (const Range* r = std::get_if<Range>(&c)) {
+    text += " in [";
+    text += real_text(r->lo);
+    text += ", ";
+    text += real_text(r->hi);
+    text += ']';
+  }
+  return text;
 }
 
 }  // namespace
@@ -152,13 +189,60 @@ void OptionParser::add(std::string name, std::string* target, std::string help, 
               listed ? "one of: " + join(vals, ", ") : "a non-empty string", assign});
 }
 
-void OptionParser::add(std::string name, std::filesystem::path* target, std::string help) {
+void OptionParser::add(std::string name, std::filesystem::path* target, std::string help,
+                       std::string metavar) {
   auto assign = [target](std::string_view s) {
     if (s.empty()) return false;
     *target = std::filesystem::path(std::string(s));
     return true;
   };
-  add_option({std::move(name), "DIR", std::move(help), target->string(), "a path", assign});
+  if (metavar.empty()) metavar = "PATH";  // an empty metavar would mark a flag
+  add_option({std::move(name), std::move(metavar), std::move(help), target->string(), "a path",
+              assign});
+}
+
+void OptionParser::add(std::string name, std::vector<Real>* target, std::string help,
+                       NumberConstraint c) {
+  std::string def;
+  for (Real v : *target) {
+    if (!std::isfinite(v) || !satisfies(v, c)) {
+      throw std::logic_error("OptionParser: default of " + name + " violates its constraint");
+    }
+    if (!def.empty()) def += ',';
+    def += real_text(v);
+  }
+  auto assign = [target, c](std::string_view s) {
+    auto v = parse_list<Real>(s, [&c](std::string_view e) -> std::optional<Real> {
+      const auto x = parse_real(e);
+      return x && satisfies(*x, c) ? x : std::nullopt;
+    });
+    if (v) *target = std::move(*v);
+    return v.has_value();
+  };
+  add_option({std::move(name), "LIST", std::move(help), def.empty() ? "none" : def,
+              plural_expected(c, false), assign});
+}
+
+void OptionParser::add(std::string name, std::vector<int>* target, std::string help,
+                       NumberConstraint c) {
+  std::string def;
+  for (int v : *target) {
+    if (!satisfies(v, c)) {
+      throw std::logic_error("OptionParser: default of " + name + " violates its constraint");
+    }
+    if (!def.empty()) def += ',';
+    def += std::to_string(v);
+  }
+  auto assign = [target, c](std::string_view s) {
+    auto v = parse_list<int>(s, [&c](std::string_view e) -> std::optional<int> {
+      int x = 0;
+      return integer_assign(&x, c)(e) ? std::optional<int>(x) : std::nullopt;
+    });
+    if (v) *target = std::move(*v);
+    return v.has_value();
+  };
+  add_option({std::move(name), "LIST", std::move(help), def.empty() ? "none" : def,
+              plural_expected(c, true), assign});
 }
 
 void OptionParser::add_flag(std::string name, bool* target, std::string help,
@@ -186,13 +270,16 @@ ParseStatus OptionParser::parse(int argc, const char* const* argv) {
                  option.data(), reason.c_str());
     return ParseStatus::usage_error;
   };
-  for (int i = 1; i < argc; ++i) {
+  for (int i = 1; i < argc; ++i) {  // --help wins wherever it is
     const std::string_view arg = argv[i];
     if (arg == "--help" || arg == "-h") {
       std::fputs(help().c_str(), stdout);
       std::fflush(stdout);
       return ParseStatus::help;
     }
+  }
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
     if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) {
       std::string quoted = "'";  // (built stepwise: GCC 12 -Wrestrict false positive)
       quoted.append(arg).append("'");
@@ -236,6 +323,31 @@ void OptionParser::fail(std::string_view option, std::string_view reason) const 
   exit_usage_error(program_, option, reason);
 }
 
+// Appends `text` to `out` wrapped at kHelpWidth columns, continuation lines indented by
+// `indent` spaces; the first line starts at column `column`.
+static void append_wrapped(std::string& out, const std::string& text, std::size_t indent,
+                    std::size_t column) {
+  constexpr std::size_t kHelpWidth = 100;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t room = kHelpWidth > column ? kHelpWidth - column : 20;
+    std::size_t end = text.size();
+    if (end - start > room) {
+      end = text.rfind(' ', start + room);
+      if (end == std::string::npos || end <= start) end = text.find(' ', start + room);
+      if (end == std::string::npos) end = text.size();
+    }
+    out.append(text, start, end - start);
+    start = end < text.size() ? end + 1 : end;
+    if (start < text.size()) {
+      out += '\n';
+      out.append(indent, ' ');
+      column = indent;
+    }
+  }
+  out += '\n';
+}
+
 std::string OptionParser::help() const {
   std::vector<std::string> heads;
   std::size_t width = std::string_view("--help").size();
@@ -243,15 +355,25 @@ std::string OptionParser::help() const {
     heads.push_back(o.metavar.empty() ? o.name : o.name + " " + o.metavar);
     width = std::max(width, heads.back().size());
   }
-  std::string s = program_ + ": " + description_ + "\n\nusage: " + program_ + " [options]\n\n";
-  s += "options:\n";
+  std::string s = program_;
+  s += ": ";
+  s += description_;
+  s += "\n\nusage: ";
+  s += program_;
+  s += " [options]\n\noptions:\n";
+  const std::size_t indent = 2 + width + 2;
   for (std::size_t k = 0; k < options_.size(); ++k) {
     const Option& o = options_[k];
-    s += "  " + heads[k] + std::string(width - heads[k].size() + 2, ' ') + o.help;
-    if (!o.metavar.empty()) s += " (" + o.expected + "; default " + o.default_text + ")";
-    s += '\n';
+    s += "  ";
+    s += heads[k];
+    s.append(width - heads[k].size() + 2, ' ');
+    std::string text = o.help;
+    if (!o.metavar.empty()) text += " (" + o.expected + "; default " + o.default_text + ")";
+    append_wrapped(s, text, indent, indent);
   }
-  s += "  --help" + std::string(width - 6 + 2, ' ') + "print this help and exit\n";
+  s += "  --help";
+  s.append(width - 6 + 2, ' ');
+  s += "print this help and exit\n";
   return s;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <limits>
 #include <stdexcept>
 
@@ -20,6 +22,12 @@ std::string at_time(Real t) {
 
 }  // namespace
 
+// *GetReturnFlagName returns a malloc'ed string owned by the caller.
+std::string ArkodeStepper::flag_name(int flag) const {
+  std::unique_ptr<char, decltype(&std::free)> name(api_.flag_name(flag), &std::free);
+  return name ? std::string(name.get()) : "flag " + std::to_string(flag);
+}
+
 ArkodeStepper::ArkodeStepper(OdeSystem& system, const StepperOptions& opts, const ArkodeApi& api,
                              Real t0, const Real* y0)
     : system_(system),
@@ -33,7 +41,7 @@ ArkodeStepper::ArkodeStepper(OdeSystem& system, const StepperOptions& opts, cons
 
 void ArkodeStepper::check(int flag, const char* call) const {
   if (flag < 0)
-    throw std::runtime_error(std::string(api_.module) + call + " failed: " + api_.flag_name(flag) +
+    throw std::runtime_error(std::string(api_.module) + call + " failed: " + flag_name(flag) +
                              (arkode_message_.empty() ? "" : " (" + arkode_message_ + ")"));
 }
 
@@ -69,14 +77,16 @@ void ArkodeStepper::bound_step(Real t_out) {
     fixed_step_reduced_ = false;
     return;
   }
-  Real bound = opts_.max_dt > 0 ? opts_.max_dt : std::numeric_limits<Real>::infinity();
+  step_cap_ = opts_.max_dt > 0 ? opts_.max_dt : std::numeric_limits<Real>::infinity();
   const Real stable = opts_.cfl_safety * system_.max_stable_dt(t_last_, y_last_.data());
-  if (stable > 0 && std::isfinite(stable)) bound = std::min(bound, stable);
-  check(api_.set_max_step(mem_, std::isfinite(bound) ? bound : 0.0), "SetMaxStep");
+  if (stable > 0 && std::isfinite(stable)) step_cap_ = std::min(step_cap_, stable);
+  check(api_.set_max_step(mem_, std::isfinite(step_cap_) ? step_cap_ : 0.0), "SetMaxStep");
 }
 
 // ARKODE 6.4.1 turns a recoverable failure of an explicit RHS evaluation into
-// ARK_UNREC_RHSFUNC_ERR. Restart from the last accepted state with a smaller step instead.
+// ARK_UNREC_RHSFUNC_ERR. Restart from the last accepted state with a step 4x smaller than the
+// failed one; adaptive runs also cap the step at half the failed one until the next advance()
+// (otherwise ARKODE regrows the step after the restart and fails again at once).
 bool ArkodeStepper::recover(int& consecutive) {
   if (t_accepted_ != t_recovered_) consecutive = 0;  // progress since the last restart
   t_recovered_ = t_accepted_;
@@ -86,8 +96,12 @@ bool ArkodeStepper::recover(int& consecutive) {
   h = kRecoveryFactor * std::abs(h);
   auto y = make_view(y_accepted_.size(), y_accepted_.data(), ctx_.get());
   if (api_.reset(mem_, t_accepted_, y.get()) < 0) return false;
-  const int flag = opts_.fixed_dt > 0 ? api_.set_fixed_step(mem_, h) : api_.set_init_step(mem_, h);
-  if (flag < 0) return false;
+  if (opts_.fixed_dt > 0) {
+    if (api_.set_fixed_step(mem_, h) < 0) return false;
+  } else {
+    step_cap_ = std::min(step_cap_, 2 * h);
+    if (api_.set_init_step(mem_, h) < 0 || api_.set_max_step(mem_, step_cap_) < 0) return false;
+  }
   fixed_step_reduced_ = opts_.fixed_dt > 0;
   ++recoveries_;
   return true;
@@ -96,6 +110,7 @@ bool ArkodeStepper::recover(int& consecutive) {
 AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
   const std::size_t n = system_.size();
   roots_.clear();
+  if (t_out < t_last_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_last_));
   if (failed_ || t_out == t_last_) {
     std::copy(y_last_.begin(), y_last_.end(), y);
     t = t_last_;
@@ -116,9 +131,11 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
       check(api_.get_root_info(mem_, roots_.data()), "GetRootInfo");
       return AdvanceStatus::RootFound;
     }
-    if (last_code_ > 0 && recover(consecutive)) continue;
+    const bool rhs_flag = flag == ARK_UNREC_RHSFUNC_ERR || flag == ARK_REPTD_RHSFUNC_ERR ||
+                          flag == ARK_FIRST_RHSFUNC_ERR;
+    if (rhs_flag && last_code_ > 0 && recover(consecutive)) continue;
     failed_ = true;
-    failure_ = std::string(api_.flag_name(flag)) + " (" + std::to_string(flag) + ") at t=" +
+    failure_ = flag_name(flag) + " (" + std::to_string(flag) + ") at t=" +
                at_time(t) + ": " + arkode_message_;
     if (!callback_error_.empty()) failure_ += "; " + callback_error_;
     if (consecutive > kMaxRecoveries)

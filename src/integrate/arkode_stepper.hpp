@@ -14,7 +14,6 @@ namespace sphark::detail {
 struct ArkodeApi {
   const char* module;
   int (*evolve)(void*, realtype, N_Vector, realtype*, int);
-  int (*get_dky)(void*, realtype, int, N_Vector);
   int (*reset)(void*, realtype, N_Vector);
   int (*set_user_data)(void*, void*);
   int (*set_err_handler)(void*, ARKErrHandlerFn, void*);
@@ -80,6 +79,7 @@ class ArkodeStepper : public Stepper {
   void bound_step(Real t_out);
   bool recover(int& consecutive);
   void check(int flag, const char* call) const;
+  std::string flag_name(int flag) const;
   static int roots_cb(realtype t, N_Vector y, realtype* g, void* self);
   static int step_done_cb(realtype t, N_Vector y, void* self);
   static void error_cb(int code, const char* module, const char* function, char* msg, void* self);
@@ -90,6 +90,7 @@ class ArkodeStepper : public Stepper {
   std::vector<Real> y_accepted_;  // state after the last accepted internal step
   Real t_accepted_ = 0;
   bool fixed_step_reduced_ = false;
+  Real step_cap_ = 0;  // max step of an adaptive run during the current advance()
   int last_code_ = 0;         // last non-zero return of a system callback
   std::string callback_error_;
   std::string arkode_message_;

@@ -8,7 +8,6 @@ namespace {
 const ArkodeApi kErkApi{
     "ERKStep",
     ERKStepEvolve,
-    ERKStepGetDky,
     ERKStepReset,
     ERKStepSetUserData,
     ERKStepSetErrHandlerFn,

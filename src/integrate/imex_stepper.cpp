@@ -13,7 +13,6 @@ namespace {
 const ArkodeApi kArkApi{
     "ARKStep",
     ARKStepEvolve,
-    ARKStepGetDky,
     ARKStepReset,
     ARKStepSetUserData,
     ARKStepSetErrHandlerFn,

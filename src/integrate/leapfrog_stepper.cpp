@@ -42,12 +42,13 @@ class LeapfrogStepper final : public Stepper {
 
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
     roots_.clear();
+    if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
     if (!failed_ && !started_) start();
     while (!failed_ && t_ < t_out) {
       Real dt = choose_dt();
       if (failed_) break;
       bool lands = t_ + dt * (1 + 1e-10) >= t_out;  // no sliver steps before t_out
-      if (lands) dt = t_out - t_;
+      if (lands) dt = (t_out - t_) + t_lost_;
       const Real planned = dt;
       if (!attempt_with_retries(dt)) break;
       lands = lands && dt == planned;
@@ -58,7 +59,7 @@ class LeapfrogStepper final : public Stepper {
         }
         if (failed_) break;
       }
-      accept(lands ? t_out : t_ + dt, dt);
+      accept(dt, lands ? t_out : NAN);
     }
     finish(y, t);
     return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
@@ -137,7 +138,7 @@ class LeapfrogStepper final : public Stepper {
     roots_.assign(g_.size(), 0);
     for (std::size_t k = 0; k < g_.size(); ++k)
       if (crossed(g_[k], g_new_[k])) roots_[k] = g_new_[k] > g_[k] ? 1 : -1;
-    accept(t_ + tau, tau);
+    accept(tau);
     return true;
   }
 
@@ -177,12 +178,20 @@ class LeapfrogStepper final : public Stepper {
     return hi;
   }
 
-  void accept(Real t_new, Real dt) {
+  // Time advances by compensated (Kahan) summation, so that long fixed-step runs keep exact
+  // step lengths; a step landing on an output time sets it exactly.
+  void accept(Real dt, Real t_landed = NAN) {
     std::swap(y_, y_new_);
     std::swap(dy_, dy_new_);
-    if (!g_.empty() && roots_.empty()) std::swap(g_, g_new_);
-    if (!roots_.empty()) std::copy(g_new_.begin(), g_new_.end(), g_.begin());
-    t_ = t_new;
+    std::swap(g_, g_new_);  // g_new_ holds g at the accepted state (when there are roots)
+    if (std::isnan(t_landed)) {
+      const Real increment = dt - t_lost_, t_new = t_ + increment;
+      t_lost_ = (t_new - t_) - increment;
+      t_ = t_new;
+    } else {
+      t_ = t_landed;
+      t_lost_ = 0;
+    }
     ++stats_.steps;
     stats_.last_dt = dt;
   }
@@ -221,6 +230,7 @@ class LeapfrogStepper final : public Stepper {
   const StepperOptions opts_;
   const std::size_t n_;
   Real t_;
+  Real t_lost_ = 0;  // Kahan compensation of t_
   std::vector<Real> y_, dy_, y_new_, dy_new_, pred_, g_, g_new_;
   std::vector<bool> is_position_;
   std::vector<int> roots_;

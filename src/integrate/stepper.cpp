@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -54,24 +55,20 @@ void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, cons
 
 }  // namespace
 
+// ARKODE 6.4.1 enum order (arkode/arkode_butcher_erk.h); names accepted by ERKStepSetTableName.
 std::vector<std::string> erk_table_names() {
-  std::vector<std::string> names;
-  for (int id = ARKODE_MIN_ERK_NUM; id <= ARKODE_MAX_ERK_NUM; ++id) {
-    // ARKODE 6.4.1 enum order; the names are those accepted by ERKStepSetTableName.
-    static const char* const kNames[] = {
-        "ARKODE_HEUN_EULER_2_1_2",      "ARKODE_BOGACKI_SHAMPINE_4_2_3",
-        "ARKODE_ARK324L2SA_ERK_4_2_3",  "ARKODE_ZONNEVELD_5_3_4",
-        "ARKODE_ARK436L2SA_ERK_6_3_4",  "ARKODE_SAYFY_ABURUB_6_3_4",
-        "ARKODE_CASH_KARP_6_4_5",       "ARKODE_FEHLBERG_6_4_5",
-        "ARKODE_DORMAND_PRINCE_7_4_5",  "ARKODE_ARK548L2SA_ERK_8_4_5",
-        "ARKODE_VERNER_8_5_6",          "ARKODE_FEHLBERG_13_7_8",
-        "ARKODE_KNOTH_WOLKE_3_3",       "ARKODE_ARK437L2SA_ERK_7_3_4",
-        "ARKODE_ARK548L2SAb_ERK_8_4_5",
-    };
-    static_assert(sizeof kNames / sizeof kNames[0] == ARKODE_MAX_ERK_NUM - ARKODE_MIN_ERK_NUM + 1);
-    names.emplace_back(kNames[id - ARKODE_MIN_ERK_NUM]);
-  }
-  return names;
+  static const char* const kNames[] = {
+      "ARKODE_HEUN_EULER_2_1_2",      "ARKODE_BOGACKI_SHAMPINE_4_2_3",
+      "ARKODE_ARK324L2SA_ERK_4_2_3",  "ARKODE_ZONNEVELD_5_3_4",
+      "ARKODE_ARK436L2SA_ERK_6_3_4",  "ARKODE_SAYFY_ABURUB_6_3_4",
+      "ARKODE_CASH_KARP_6_4_5",       "ARKODE_FEHLBERG_6_4_5",
+      "ARKODE_DORMAND_PRINCE_7_4_5",  "ARKODE_ARK548L2SA_ERK_8_4_5",
+      "ARKODE_VERNER_8_5_6",          "ARKODE_FEHLBERG_13_7_8",
+      "ARKODE_KNOTH_WOLKE_3_3",       "ARKODE_ARK437L2SA_ERK_7_3_4",
+      "ARKODE_ARK548L2SAb_ERK_8_4_5",
+  };
+  static_assert(std::size(kNames) == ARKODE_MAX_ERK_NUM - ARKODE_MIN_ERK_NUM + 1);
+  return {std::begin(kNames), std::end(kNames)};
 }
 
 bool erk_table_has_embedding(const std::string& name) {

@@ -19,6 +19,10 @@
 namespace sphark {
 namespace {
 
+// zlib level 1: measured 1.0 s vs 2.5 s per 10^6-point 2D frame (4 arrays) at VTK's default
+// level 5, for 11.3 vs 11.2 MB.
+constexpr int kZlibLevel = 1;
+
 void check_frame(const ParticleFrame& f) {
   if (f.dim < 1 || f.dim > 3) {
     throw std::invalid_argument("ParticleFrame: dim " + std::to_string(f.dim) + " not in 1..3");
@@ -113,6 +117,7 @@ void write_vtp(const std::filesystem::path& path, const ParticleFrame& frame, Re
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary, not base64
   writer->SetCompressorTypeToZLib();
+  writer->SetCompressionLevel(kZlibLevel);
   writer->SetHeaderTypeToUInt64();
   const int ok = writer->Write();
   std::error_code ec;

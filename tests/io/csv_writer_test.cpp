@@ -80,6 +80,19 @@ TEST(CsvWriter, ChecksRowWidthAndColumnNames) {
   EXPECT_THROW(CsvWriter(dir.path() / "no_dir" / "c.csv", {"t"}), std::runtime_error);
 }
 
+TEST(CsvWriter, MovesKeepTheOpenFile) {
+  test::TempDir dir;
+  std::vector<CsvWriter> writers;
+  writers.emplace_back(dir.path() / "a.csv", std::vector<std::string>{"t"});
+  writers.emplace_back(dir.path() / "b.csv", std::vector<std::string>{"t"});  // moves a
+  writers[0].row({1.5});
+  CsvWriter c = std::move(writers[1]);
+  c.row({2.5});
+  EXPECT_THROW(writers[1].row({0.0}), std::logic_error);
+  EXPECT_EQ(lines_of(dir.path() / "a.csv"), (std::vector<std::string>{"t", "1.5"}));
+  EXPECT_EQ(lines_of(dir.path() / "b.csv"), (std::vector<std::string>{"t", "2.5"}));
+}
+
 TEST(WriteFileAtomically, ReplacesWholeFileWithoutTemporaries) {
   test::TempDir dir;
   const auto path = dir.path() / "summary.txt";

@@ -3,15 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cctype>
 #include <fstream>
+#include <sstream>
 
 #include "sphark/cli/options.hpp"
+#include "sphark/integrate/stepper.hpp"
 #include "temp_dir.hpp"
 
 namespace sphark {
 namespace {
 
-const std::vector<std::string> kSteppers = {"ARKODE_HEUN_EULER_2_1_2", "ark-imex", "leapfrog"};
+const std::vector<std::string> kSteppers = {"ARKODE_HEUN_EULER_2_1_2",
+                                           "ARKODE_DORMAND_PRINCE_7_4_5", "ark-imex", "leapfrog"};
 
 struct Parsed {
   ParseStatus status;
@@ -37,6 +41,23 @@ Parsed run(std::vector<std::string> args, CoreOptions& o, long* seed = nullptr,
   return r;
 }
 
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string l; std::getline(ss, l);) out.push_back(l);
+  return out;
+}
+
+// Runs of whitespace (including the help text's line wraps) -> one space.
+std::string collapse_space(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool space = std::isspace(static_cast<unsigned char>(c));
+    if (!space || out.empty() || out.back() != ' ') out += space ? ' ' : c;
+  }
+  return out;
+}
+
 void expect_usage_error(std::vector<std::string> args, const std::string& line) {
   CoreOptions o;
   long seed = 0;
@@ -57,7 +78,7 @@ TEST(Options, ParsesEveryType) {
   Real alpha = 1;
   const Parsed r = run({"--out", "results/a", "--t-end=0.25", "--stepper", "leapfrog",
                         "--rtol", "1e-8", "--atol=3.5e-12", "--dt", "0", "--output-every",
-                        "0.01", "--threads", "2", "--no-render", "--seed", "17", "--kernel",
+                        "+0.01", "--threads", "+2", "--no-render", "--seed", "17", "--kernel",
                         "wendland-c2", "--cleaning", "off", "--alpha", "-0.5"},
                        o, &seed, &kernel, &cleaning, &alpha);
   ASSERT_EQ(r.status, ParseStatus::ok) << r.err;
@@ -109,6 +130,8 @@ TEST(Options, EachBadInputIsOneLine) {
                      "water_drop: --rtol: bad value '-infinity' (expected a positive real number)");
   expect_usage_error({"--alpha", "1e400"},
                      "water_drop: --alpha: bad value '1e400' (expected a real number)");
+  expect_usage_error({"--rtol", "+-1"},
+                     "water_drop: --rtol: bad value '+-1' (expected a positive real number)");
   expect_usage_error({"--threads", "1.5"},
                      "water_drop: --threads: bad value '1.5' (expected a non-negative integer)");
   expect_usage_error({"--threads", "99999999999"},
@@ -117,7 +140,7 @@ TEST(Options, EachBadInputIsOneLine) {
                      "water_drop: --seed: bad value '1001' (expected an integer in [0, 1000])");
   expect_usage_error({"--stepper", "rk4"},
                      "water_drop: --stepper: bad value 'rk4' (expected one of: "
-                     "ARKODE_HEUN_EULER_2_1_2, ark-imex, leapfrog)");
+                     "ARKODE_HEUN_EULER_2_1_2, ARKODE_DORMAND_PRINCE_7_4_5, ark-imex, leapfrog)");
   expect_usage_error({"--kernel", ""},
                      "water_drop: --kernel: bad value '' (expected one of: cubic, wendland-c2)");
   expect_usage_error({"--cleaning", "yes"},
@@ -137,14 +160,18 @@ TEST(Options, HelpListsEveryOptionWithDefaultAndMeaning) {
   std::string kernel = "cubic";
   bool cleaning = true;
   Real alpha = 1;
-  const Parsed r = run({"--t-end", "0.5", "--help", "--bogus"}, o, &seed, &kernel, &cleaning, &alpha);
+  // --help wins even after a bad option.
+  const Parsed r = run({"--bogus", "--t-end", "0.5", "--help"}, o, &seed, &kernel, &cleaning,
+                       &alpha);
   EXPECT_EQ(r.status, ParseStatus::help);
   EXPECT_TRUE(r.err.empty());
-  const std::string& h = r.out;
-  EXPECT_EQ(h.rfind("water_drop: 2D water drop\n", 0), 0u);
+  EXPECT_EQ(r.out.rfind("water_drop: 2D water drop\n", 0), 0u);
+  for (const auto& line : lines(r.out)) EXPECT_LE(line.size(), 100u) << line;
+  const std::string h = collapse_space(r.out);  // help text is wrapped at 100 columns
   for (const char* piece :
        {"--out DIR ", "(a path; default out)", "--t-end REAL ", "end time (a positive real number; default 0.1)",
-        "--stepper NAME ", "(one of: ARKODE_HEUN_EULER_2_1_2, ark-imex, leapfrog; default ark-imex)",
+        "--stepper NAME ", "(one of: ARKODE_HEUN_EULER_2_1_2, ARKODE_DORMAND_PRINCE_7_4_5, ark-imex, leapfrog; "
+        "default ARKODE_DORMAND_PRINCE_7_4_5)",
         "--rtol REAL ", "default 1e-06", "--atol REAL ", "default 1e-09", "--dt REAL ",
         "fixed time step, 0 = adaptive (a non-negative real number; default 0)",
         "--output-every REAL ", "--threads INT ", "(a non-negative integer; default 0)",
@@ -153,6 +180,55 @@ TEST(Options, HelpListsEveryOptionWithDefaultAndMeaning) {
         "(on or off; default on)", "--alpha REAL ", "--help ", "print this help and exit"}) {
     EXPECT_NE(h.find(piece), std::string::npos) << "missing: " << piece << "\n" << h;
   }
+}
+
+TEST(Options, CommaSeparatedLists) {
+  std::vector<Real> widths = {0.5, 1};
+  std::vector<int> resolutions = {25, 50};
+  auto parse = [&](std::vector<const char*> argv) {
+    OptionParser p("conv", "convergence study");
+    p.add("--widths", &widths, "kernel widths", Positive{});
+    p.add("--n", &resolutions, "resolutions", Range{2, 4096});
+    argv.insert(argv.begin(), "conv");
+    ::testing::internal::CaptureStderr();
+    const ParseStatus s = p.parse(static_cast<int>(argv.size()), argv.data());
+    return std::pair{s, ::testing::internal::GetCapturedStderr()};
+  };
+  auto [ok, err] = parse({"--widths", "1.2,1.5,2", "--n=25,50,100,200"});
+  EXPECT_EQ(ok, ParseStatus::ok) << err;
+  EXPECT_EQ(widths, (std::vector<Real>{1.2, 1.5, 2}));
+  EXPECT_EQ(resolutions, (std::vector<int>{25, 50, 100, 200}));
+  EXPECT_EQ(parse({"--widths", "1,-2"}).second,
+            "conv: --widths: bad value '1,-2' (expected a comma-separated list of positive real "
+            "numbers)\n");
+  EXPECT_EQ(parse({"--widths", "1,,2"}).first, ParseStatus::usage_error);
+  EXPECT_EQ(parse({"--widths", "1,nan"}).first, ParseStatus::usage_error);
+  EXPECT_EQ(parse({"--n", "25,1"}).second,
+            "conv: --n: bad value '25,1' (expected a comma-separated list of integers in "
+            "[2, 4096])\n");
+  EXPECT_EQ(widths, (std::vector<Real>{1.2, 1.5, 2}));  // failed parses assign nothing
+}
+
+TEST(CoreOptions, StepperNamesAndMapping) {
+  const auto names = core_stepper_names();
+  const auto erk = erk_table_names();
+  ASSERT_EQ(names.size(), erk.size() + 2);
+  EXPECT_TRUE(std::equal(erk.begin(), erk.end(), names.begin()));
+  EXPECT_EQ(names[erk.size()], "ark-imex");
+  EXPECT_EQ(names[erk.size() + 1], "leapfrog");
+  // The default --stepper is StepperOptions' default method, and a valid name.
+  CoreOptions o;
+  EXPECT_EQ(o.stepper, StepperOptions{}.method);
+  OptionParser p("x", "y");
+  EXPECT_NO_THROW(add_core_options(p, o));
+  const char* argv[] = {"x", "--stepper", "leapfrog", "--rtol", "1e-8", "--atol", "1e-12",
+                        "--dt", "0.001"};
+  ASSERT_EQ(p.parse(9, argv), ParseStatus::ok);
+  const StepperOptions s = stepper_options(o);
+  EXPECT_EQ(s.method, "leapfrog");
+  EXPECT_EQ(s.rtol, 1e-8);
+  EXPECT_EQ(s.atol, std::vector<Real>{1e-12});
+  EXPECT_EQ(s.fixed_dt, 0.001);
 }
 
 TEST(Options, ProgrammerErrorsThrow) {

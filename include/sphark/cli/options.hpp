@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "sphark/core/types.hpp"
+#include "sphark/integrate/stepper_options.hpp"
 
 namespace sphark {
 
@@ -51,15 +52,20 @@ class OptionParser {
   void add(std::string name, int* target, std::string help, NumberConstraint c = {});
   void add(std::string name, long* target, std::string help, NumberConstraint c = {});
   void add(std::string name, std::string* target, std::string help, OneOf allowed = {});
-  void add(std::string name, std::filesystem::path* target, std::string help);
+  void add(std::string name, std::filesystem::path* target, std::string help,
+           std::string metavar = "PATH");
+  // Comma-separated lists ("--resolutions 25,50,100"); every element meets the constraint.
+  void add(std::string name, std::vector<Real>* target, std::string help, NumberConstraint c = {});
+  void add(std::string name, std::vector<int>* target, std::string help, NumberConstraint c = {});
   void add(std::string name, bool* target, std::string help) = delete;  // use flag / switch
   // "--name": sets *target = value_when_given (e.g. --no-render sets render = false).
   void add_flag(std::string name, bool* target, std::string help, bool value_when_given = true);
   // "--name on|off".
   void add_switch(std::string name, bool* target, std::string help);
 
-  // Parses argv[1..argc). On --help prints help() to stdout and returns help; on bad input
-  // prints one line to stderr and returns usage_error (targets may be partly assigned).
+  // Parses argv[1..argc). If any argument is --help (or -h): prints help() to stdout and
+  // returns help. On bad input: prints one line to stderr and returns usage_error (targets
+  // may be partly assigned).
   ParseStatus parse(int argc, const char* const* argv);
   ParseStatus parse(int argc, char** argv) {
     return parse(argc, const_cast<const char* const*>(argv));
@@ -97,7 +103,7 @@ class OptionParser {
 struct CoreOptions {
   std::filesystem::path out = "out";  // output directory
   Real t_end = 1;                     // end time
-  std::string stepper = "ark-imex";   // ERK table name | ark-imex | leapfrog
+  std::string stepper = "ARKODE_DORMAND_PRINCE_7_4_5";  // ERK table | ark-imex | leapfrog
   Real rtol = 1e-6;                   // adaptive-step relative tolerance
   Real atol = 1e-9;                   // adaptive-step absolute tolerance
   Real dt = 0;                        // fixed step; 0 = adaptive
@@ -110,6 +116,14 @@ struct CoreOptions {
 // --no-render with the current values of `o` as defaults. `steppers` is the list of valid
 // --stepper names (it lives in integrate/); o.stepper must be one of them.
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers);
+// The same with core_stepper_names().
+void add_core_options(OptionParser& p, CoreOptions& o);
+
+// Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog".
+std::vector<std::string> core_stepper_names();
+
+// StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt.
+StepperOptions stepper_options(const CoreOptions& o);
 
 // Sets the OpenMP thread count if threads > 0.
 void apply_thread_count(int threads);

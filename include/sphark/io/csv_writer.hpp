@@ -28,6 +28,8 @@ class CsvWriter {
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
+  CsvWriter(CsvWriter&& other) noexcept;
+  CsvWriter& operator=(CsvWriter&& other) noexcept;
 
   // One row, each value as %.17g, then flushed. Throws std::invalid_argument if
   // values.size() != columns().size(), std::runtime_error on a write error.

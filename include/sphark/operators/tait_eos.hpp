@@ -13,6 +13,11 @@ inline Real tait_pressure(Real rho, Real rho0, Real sound_speed) {
   return sound_speed * sound_speed * rho0 / 7.0 * (s7 - 1.0);
 }
 
+// Inverse of eq. (26): the density at which the Tait EOS gives pressure P.
+inline Real tait_density(Real pressure, Real rho0, Real sound_speed) {
+  return rho0 * std::pow(1.0 + 7.0 * pressure / (sound_speed * sound_speed * rho0), 1.0 / 7.0);
+}
+
 // Local sound speed of the Tait EOS, c = sqrt(dP/drho) = c_s (rho/rho_0)^3.
 inline Real tait_sound_speed(Real rho, Real rho0, Real sound_speed) {
   const Real s = rho / rho0;

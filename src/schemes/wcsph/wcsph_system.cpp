@@ -10,6 +10,7 @@
 #include "sphark/operators/density_diffusion.hpp"
 #include "sphark/operators/pair_geometry.hpp"
 #include "sphark/operators/pressure_force.hpp"
+#include "sphark/operators/renormalised_gradient.hpp"
 #include "sphark/operators/tait_eos.hpp"
 
 namespace sphark {
@@ -33,6 +34,7 @@ WcsphSystem<D, Kernel>::WcsphSystem(std::size_t particles, WcsphParams<D> params
   p_over_rho2_.assign(particles, 0);
   q_psi_.assign(particles, 0);
   div_v_.assign(particles, 0);
+  grad_rho_.assign(particles, Vec<D>::Zero());
 }
 
 template <int D, class Kernel>
@@ -43,6 +45,25 @@ void WcsphSystem<D, Kernel>::update_neighbours(const Real* x) {
   search_.build(x, layout_.particles(), support + skin);
   built_ = true;
   ++builds_;
+}
+
+// <grad rho>^L of Antuono et al. (2010), eq. (12), for the corrected density diffusion.
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::renormalised_density_gradients(const Real* x, const Real* rho) {
+  const NeighbourList& nl = search_.list();
+  const Real h = p_.h, support2 = Kernel::support * h * Kernel::support * h;
+  const std::size_t n = layout_.particles();
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < n; ++a) {
+    RenormalisedGradient<D> g;
+    for (std::size_t k = nl.begin(a); k < nl.end(a); ++k) {
+      const std::size_t b = nl.indices[k];
+      const Vec<D> x_ab = search_.separation(x, a, b);
+      if (x_ab.squaredNorm() >= support2) continue;
+      g.add(p_.mass / rho[b], rho[a], rho[b], x_ab, Kernel::f_over_r(x_ab.norm(), h) * x_ab);
+    }
+    grad_rho_[a] = g.finish();
+  }
 }
 
 template <int D, class Kernel>
@@ -88,6 +109,9 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept 
       if (clean) q_psi_[a] = psi[a] / (rho[a] * rho[a]);  // Omega = 1 for constant h
     }
 
+    const bool corrected_diffusion = dh_c > 0 && p_.diffusion_correction && !subsystem;
+    if (corrected_diffusion) renormalised_density_gradients(x.data(), rho.data());
+    const Vec<D> zero = Vec<D>::Zero();
     const NeighbourList& nl = search_.list();
     const Real support2 = Kernel::support * h * Kernel::support * h;
     Real max_acc2 = 0;
@@ -114,7 +138,9 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept 
           acc += monaghan_viscosity_term<D>(m, p_.alpha, c_ab, 0.5 * (rho[a] + rho[b]), h, x_ab, v_ab, g.grad_w);
         }
         cont += continuity_term<D>(m, v_ab, g.grad_w);  // eq. (28), sign of eq. (36)
-        if (dh_c > 0) diffusion += density_diffusion_term<D>(m / rho[b], rho[a], rho[b], x_ab, g.grad_w);
+        if (dh_c > 0)
+          diffusion += density_diffusion_term<D>(m / rho[b], rho[a], rho[b], corrected_diffusion ? grad_rho_[a] : zero,
+                                                 corrected_diffusion ? grad_rho_[b] : zero, x_ab, g.grad_w);
       }
       div_v_[a] = -div_sum / rho[a];  // eq. (36)
       if (!subsystem && p_.body_force) acc += p_.body_force(Vec<D>(x.col(a)));

@@ -15,6 +15,7 @@ struct WcsphParams {
   Real h = 0;                 // smoothing length, constant (eq. (5) at t = 0)
   Real alpha = 0.0;           // Monaghan artificial viscosity coefficient
   Real delta = 0.1;           // density diffusion (delta-SPH) coefficient; 0 switches it off
+  bool diffusion_correction = true;  // Antuono et al. (2010) correction; false: Molteni & Colagrossi
   bool cleaning = false;      // constrained velocity cleaning, eqs. (29)-(30) with (36), (39)
   Real clean_speed = 0;       // c_h; 0 means c_h = c_s
   Real clean_sigma = 0.5;     // damping strength sigma, tau = h / (sigma c_h); 0: purely hyperbolic

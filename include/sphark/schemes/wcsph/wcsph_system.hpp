@@ -69,7 +69,10 @@ class WcsphSystem final : public OdeSystem {
   NeighbourSearch<D> search_;
   bool built_ = false;
   long builds_ = 0, rhs_calls_ = 0;
+  void renormalised_density_gradients(const Real* x, const Real* rho);
+
   std::vector<Real> pressure_, p_over_rho2_, q_psi_, div_v_;
+  std::vector<Vec<D>> grad_rho_;
   Real max_accel_ = 0;
   std::string error_;
 };
