@@ -79,7 +79,7 @@ RunResult run(const std::string& name, Cleaning form, Real sigma, const CoreOpti
   RunResult r;
   r.name = name;
   Real e0 = 0, t = 0;
-  const Real every = core.output_every > 0 ? core.output_every : 0.05;
+  const Real every = core.output_every > 0 ? core.output_every : core.t_end;  // 0: first and last only
   const auto start = std::chrono::steady_clock::now();
   for (long k = 0;; ++k) {
     const SpmhdDiagnostics d = spmhd_diagnostics(scheme, t, y.data());

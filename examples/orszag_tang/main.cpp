@@ -74,7 +74,7 @@ RunSummary run(const std::string& variant, const CoreOptions& core, int nx, Real
   RunSummary r;
   r.variant = variant;
   Real t = 0, e0 = 0;
-  const Real every = core.output_every > 0 ? core.output_every : 0.05;
+  const Real every = core.output_every > 0 ? core.output_every : core.t_end;  // 0: first and last only
   ProgressReporter progress(0, core.t_end, 10);
   const auto start = std::chrono::steady_clock::now();
   for (long k = 0;; ++k) {
