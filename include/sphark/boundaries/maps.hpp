@@ -1,0 +1,92 @@
+#pragma once
+// Ghost maps across a curved wall, acting on the wall-normal coordinate s only (seed 004, eq. 9).
+//
+//   mirror          psi0(s) = -s                                   seed 004, eq. (15)/(16)
+//   density map     psi' = -J(s)/J(psi), psi(0) = 0                seed 004, eqs. (12)-(13)
+//
+// Every closed form below has the canonical form g(rho(psi)) + g(rho(s)) = 2 g(rho0)
+// (seed 004, eq. 30) with rho the radial coordinate of the wall (rho = R + s for fluid inside,
+// rho = R - s for fluid outside an obstacle) and g' proportional to the Jacobian. A map can leave
+// its valid range (the ghost would have to cross the symmetry axis / centre line, or no real
+// solution exists); it then returns the limiting value together with a status != Ok, never NaN.
+#include <cmath>
+#include <limits>
+#include <string_view>
+
+#include "sphark/core/types.hpp"
+
+namespace sphark {
+
+// Which side of the wall the fluid is on: inside a pipe / ball / torus tube, or outside an
+// obstacle. s < 0 is always the fluid side.
+enum class FluidSide { Inside, Outside };
+
+// +1: rho = rho0 + s (fluid inside), -1: rho = rho0 - s (fluid outside).
+inline constexpr Real side_sign(FluidSide side) { return side == FluidSide::Inside ? 1.0 : -1.0; }
+
+enum class MapStatus {
+  Ok,
+  BeyondAxis,      // the ghost would be placed across the axis of symmetry (torus, R/a < 2)
+  NoRealSolution,  // g(rho') = c has no root rho' >= 0: the ghost side has too little volume
+};
+
+std::string_view to_string(MapStatus status);
+
+struct MapResult {
+  Real psi = 0;  // ghost coordinate s' (> 0 for s < 0); the limiting value when status != Ok
+  MapStatus status = MapStatus::Ok;
+  bool ok() const { return status == MapStatus::Ok; }
+};
+
+inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+
+// seed 004, eq. (15)
+inline MapResult mirror_map(Real s) { return {-s, MapStatus::Ok}; }
+
+// Cylinder (or 2D circle) of radius R, J = rho: seed 004, eq. (21)
+//   psi = sqrt(2R^2 - (R+s)^2) - R, written without cancellation as
+//   psi = -s (2R + s) / (sqrt(2R^2 - (R+s)^2) + R)   (fluid inside; s -> -s, psi -> -psi outside).
+inline MapResult cylinder_map(Real s, Real R, FluidSide side) {
+  const Real sg = side_sign(side);
+  const Real t = sg * s;  // rho - R
+  const Real q2 = 2 * R * R - (R + t) * (R + t);
+  if (q2 < 0) return {sg * (-R), MapStatus::NoRealSolution};  // ghost would pass the axis
+  const Real dt = -t * (2 * R + t) / (std::sqrt(q2) + R);     // rho' - R
+  return {sg * dt, MapStatus::Ok};
+}
+
+// Sphere of radius R, J = rho^2 sin(phi): seed 004, eq. (25)
+//   psi = cbrt(2R^3 - (R+s)^3) - R = -s (rho^2 + rho R + R^2) / (q^2 + q R + R^2), q = cbrt(.)
+inline MapResult sphere_map(Real s, Real R, FluidSide side) {
+  const Real sg = side_sign(side);
+  const Real t = sg * s;
+  const Real rho = R + t;
+  const Real q3 = 2 * R * R * R - rho * rho * rho;
+  if (q3 < 0) return {sg * (-R), MapStatus::NoRealSolution};  // ghost would pass the centre
+  const Real q = std::cbrt(q3);
+  const Real dt = -t * (rho * rho + rho * R + R * R) / (q * q + q * R + R * R);
+  return {sg * dt, MapStatus::Ok};
+}
+
+// Largest real root z >= 1/sqrt(3) of the depressed cubic z^3 - z = k, the branch through
+// z(0) = 1, for k >= -2/(3 sqrt 3) (Viete's trigonometric / hyperbolic forms; no cancellation at
+// k -> 0 and continuous through the change of form at k = 2/(3 sqrt 3)).
+Real depressed_cubic_root(Real k);
+// The same root by two Halley steps from its Taylor series; used for |k| <= kTorusFastK where it
+// agrees with depressed_cubic_root to round-off (tests/boundaries/maps_test.cpp).
+Real depressed_cubic_root_fast(Real k);
+inline constexpr Real kTorusFastK = 0.25;
+inline constexpr Real kCubicFoldK = -0.38490017945975050;  // -2 / (3 sqrt 3)
+
+// Inverse of the toroidal g(x) = Bu x^3/3 + x^2/2 (seed 004, eq. 29) on its increasing branch
+// 0 <= x <= 1/|Bu| (Bu < 0) or x >= 0 (Bu >= 0), i.e. the ghost stays on the fluid's side of the
+// torus axis. Equivalent to seed 004, eqs. (41)-(47), rewritten as x = sqrt(2c) / z with
+// z^3 - z = k, k = (2/3) Bu sqrt(2c), which is exact at Bu = 0 (x = sqrt(2c), eq. 44) instead of
+// the 0/0 of eq. (45). Returns NoRealSolution for c < 0 and BeyondAxis for k below the fold.
+MapResult torus_g_inverse(Real c, Real Bu);
+
+// Torus of minor radius a, major radius R, at poloidal angle u (cos_u = cos u, u = 0 on the
+// outer equator): J = rho (R + rho cos u), Bu = cos(u)/R, seed 004, eqs. (27)-(29), (38)-(47).
+MapResult torus_map(Real s, Real a, Real R, Real cos_u, FluidSide side);
+
+}  // namespace sphark
