@@ -1,6 +1,7 @@
 #include "sphark/boundaries/static_profile.hpp"
 
 #include "sphark/boundaries/relaxation.hpp"
+#include "sphark/boundaries/wall_relaxation.hpp"
 #include "sphark/kernels/kernels.hpp"
 
 namespace sphark {
@@ -41,6 +42,31 @@ NodeDensityProfile<D> node_density_profile(const Wall<D>& wall, const std::vecto
   return out;
 }
 
+template <int D>
+RelaxedSet<D> relaxed_set(const Wall<D>& wall, const PeriodicBox<D>& relax_box, std::size_t n_box,
+                          GhostMap relax_map, const std::optional<PeriodicBox<D>>& wall_box,
+                          const std::function<bool(const Vec<D>&)>& may_move, Real band_H, unsigned seed,
+                          const RelaxOptions& opt) {
+  RelaxedSet<D> out;
+  std::vector<Real> x = jittered_lattice<D>(n_box, relax_box, 0.8, seed);
+  out.bulk = relax_uniform<D>(x, relax_box, opt);
+  const Real H = WendlandC4<D>::support * out.bulk.h;
+  std::vector<char> movable;
+  std::visit(
+      [&](const auto& w) {
+        for (std::size_t i = 0; i < x.size() / D; ++i) {
+          const Vec<D> p = Eigen::Map<const Vec<D>>(x.data() + D * i);
+          const Real s = w.locate(p).s;
+          if (s >= 0) continue;
+          out.x.insert(out.x.end(), x.begin() + D * i, x.begin() + D * i + D);
+          movable.push_back(s > -band_H * H && may_move(p));
+        }
+      },
+      wall);
+  out.wall = relax_near_wall<D>(out.x, wall, relax_map, out.bulk.h, movable, wall_box, opt);
+  return out;
+}
+
 BinMean mean_in_range(const std::vector<Real>& s, const std::vector<Real>& n, Real lo, Real hi) {
   BinMean b;
   for (std::size_t i = 0; i < s.size(); ++i)
@@ -52,6 +78,12 @@ BinMean mean_in_range(const std::vector<Real>& s, const std::vector<Real>& n, Re
   return b;
 }
 
+template RelaxedSet<2> relaxed_set<2>(const Wall<2>&, const PeriodicBox<2>&, std::size_t, GhostMap,
+                                      const std::optional<PeriodicBox<2>>&, const std::function<bool(const Vec<2>&)>&,
+                                      Real, unsigned, const RelaxOptions&);
+template RelaxedSet<3> relaxed_set<3>(const Wall<3>&, const PeriodicBox<3>&, std::size_t, GhostMap,
+                                      const std::optional<PeriodicBox<3>>&, const std::function<bool(const Vec<3>&)>&,
+                                      Real, unsigned, const RelaxOptions&);
 template NodeDensityProfile<2> node_density_profile<2>(const Wall<2>&, const std::vector<Real>&, Real, GhostMap, Real,
                                                        const std::optional<PeriodicBox<2>>&);
 template NodeDensityProfile<3> node_density_profile<3>(const Wall<3>&, const std::vector<Real>&, Real, GhostMap, Real,
