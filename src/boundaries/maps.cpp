@@ -25,9 +25,10 @@ Real depressed_cubic_root(Real k) {
 Real depressed_cubic_root_fast(Real k) {
   // Taylor series z = 1 + k/2 - 3k^2/8 + k^3/2 + O(k^4), then Halley's iteration on
   // f(z) = z^3 - z - k (cubic convergence: |k| <= 1/4 gives an initial error < 3e-3, then
-  // < 1e-7, then round-off).
+  // < 1e-7, then round-off; |k| <= 0.35: a third step, measured error < 5e-16).
   Real z = 1 + k * (0.5 + k * (-0.375 + 0.5 * k));
-  for (int it = 0; it < 2; ++it) {
+  const int steps = std::abs(k) <= 0.25 ? 2 : 3;
+  for (int it = 0; it < steps; ++it) {
     const Real f = z * z * z - z - k;
     const Real df = 3 * z * z - 1;
     z -= 2 * f * df / (2 * df * df - 6 * z * f);

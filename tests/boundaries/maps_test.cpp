@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,15 @@ TEST(GhostMaps, FastCubicRootEqualsVieteForm) {
   const Real kc = 2 / (3 * std::sqrt(3.0));
   EXPECT_NEAR(depressed_cubic_root(kc * (1 + 1e-12)), depressed_cubic_root(kc * (1 - 1e-12)), 1e-10);
   EXPECT_NEAR(depressed_cubic_root(kCubicFoldK), 1 / std::sqrt(3.0), 1e-7);
+}
+
+// The sphere's cube root (guess + Halley) equals std::cbrt to round-off on its range [1, 2].
+TEST(GhostMaps, FastCubeRootEqualsCbrt) {
+  for (int k = 0; k <= 10000; ++k) {
+    const Real y = 1 + k / 10000.0;
+    // last Halley step rounds twice, std::cbrt is within 1 ulp: 3 ulp
+    EXPECT_NEAR(cbrt_1_2(y), std::cbrt(y), 3 * std::numeric_limits<Real>::epsilon() * std::cbrt(y)) << "y = " << y;
+  }
 }
 
 // Maps that leave their valid range report it (and return the limit, not NaN).

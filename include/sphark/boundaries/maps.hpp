@@ -55,6 +55,23 @@ inline MapResult cylinder_map(Real s, Real R, FluidSide side) {
   return {sg * dt, MapStatus::Ok};
 }
 
+// cbrt(y) by a quadratic guess on [1, 2] and two Halley steps q <- q (q^3 + 2y) / (2q^3 + y)
+// (guess error < 1e-3, then < 1e-9, then round-off), for y in [1, 2]: the range of
+// (2R^3 - rho^3)/R^3 for fluid inside a sphere. Elsewhere std::cbrt.
+inline Real cbrt_1_2(Real y) {
+  Real q = 0.62208 + y * (0.43692 - 0.05900 * y);
+  for (int it = 0; it < 2; ++it) {
+    const Real q3 = q * q * q;
+    q *= (q3 + 2 * y) / (2 * q3 + y);
+  }
+  return q;
+}
+inline Real cube_root(Real q3, Real R) {
+  const Real R3 = R * R * R;
+  if (q3 >= R3 && q3 <= 2 * R3) return R * cbrt_1_2(q3 / R3);
+  return std::cbrt(q3);
+}
+
 // Sphere of radius R, J = rho^2 sin(phi): seed 004, eq. (25)
 //   psi = cbrt(2R^3 - (R+s)^3) - R = -s (rho^2 + rho R + R^2) / (q^2 + q R + R^2), q = cbrt(.)
 inline MapResult sphere_map(Real s, Real R, FluidSide side) {
@@ -63,7 +80,7 @@ inline MapResult sphere_map(Real s, Real R, FluidSide side) {
   const Real rho = R + t;
   const Real q3 = 2 * R * R * R - rho * rho * rho;
   if (q3 < 0) return {sg * (-R), MapStatus::NoRealSolution};  // ghost would pass the centre
-  const Real q = std::cbrt(q3);
+  const Real q = cube_root(q3, R);
   const Real dt = -t * (rho * rho + rho * R + R * R) / (q * q + q * R + R * R);
   return {sg * dt, MapStatus::Ok};
 }
@@ -72,10 +89,10 @@ inline MapResult sphere_map(Real s, Real R, FluidSide side) {
 // z(0) = 1, for k >= -2/(3 sqrt 3) (Viete's trigonometric / hyperbolic forms; no cancellation at
 // k -> 0 and continuous through the change of form at k = 2/(3 sqrt 3)).
 Real depressed_cubic_root(Real k);
-// The same root by two Halley steps from its Taylor series; used for |k| <= kTorusFastK where it
-// agrees with depressed_cubic_root to round-off (tests/boundaries/maps_test.cpp).
+// The same root by Halley steps from its Taylor series (two for |k| <= 1/4, three up to
+// kTorusFastK); agrees with depressed_cubic_root to round-off there (tests/boundaries/maps_test.cpp).
 Real depressed_cubic_root_fast(Real k);
-inline constexpr Real kTorusFastK = 0.25;
+inline constexpr Real kTorusFastK = 0.35;
 inline constexpr Real kCubicFoldK = -0.38490017945975050;  // -2 / (3 sqrt 3)
 
 // Inverse of the toroidal g(x) = Bu x^3/3 + x^2/2 (seed 004, eq. 29) on its increasing branch

@@ -104,9 +104,9 @@ struct Torus {
 
   WallPoint<3> locate(const Vec<3>& x) const {
     const Vec<3> d = x - centre;
-    const Real rxy = std::hypot(d[0], d[1]);
+    const Real rxy = std::sqrt(d[0] * d[0] + d[1] * d[1]);
     const Real ex = rxy > 0 ? d[0] / rxy : 1, ey = rxy > 0 ? d[1] / rxy : 0;
-    const Real dr = rxy - R, r = std::hypot(dr, d[2]);
+    const Real dr = rxy - R, r = std::sqrt(dr * dr + d[2] * d[2]);
     const Real c = r > 0 ? dr / r : 1, sn = r > 0 ? d[2] / r : 0;  // cos u, sin u
     const Real sg = side_sign(side);
     return {sg * (r - a), Vec<3>(sg * c * ex, sg * c * ey, sg * sn), c};
