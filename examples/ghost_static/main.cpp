@@ -19,6 +19,7 @@ void usage() {
       "  --draws N             random draws for Table 1 (default 10)\n"
       "  --seed S              random seed (default 1)\n"
       "  --no-plots            do not run vis/ghost_static.py at the end\n"
+      "  --only PART           run one part: fig5, static or cost (default: all)\n"
       "  --help                this text\n");
 }
 
@@ -47,6 +48,7 @@ unsigned long long parse_count(const std::string& option, const std::string& val
 
 int main(int argc, char** argv) {
   ghost_static::Options opt;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -67,6 +69,9 @@ int main(int argc, char** argv) {
       opt.draws = static_cast<int>(parse_count(a, value(), 2, 1000));
     } else if (a == "--seed") {
       opt.seed = static_cast<unsigned>(parse_count(a, value(), 0, 4294967295ull));
+    } else if (a == "--only") {
+      only = value();
+      if (only != "fig5" && only != "static" && only != "cost") bad(a, only, "expected fig5, static or cost");
     } else if (a == "--no-plots") {
       opt.plots = false;
     } else {
@@ -79,9 +84,9 @@ int main(int argc, char** argv) {
   if (ec) bad("--out", opt.out, ec.message().c_str());
 
   const auto t0 = std::chrono::steady_clock::now();
-  ghost_static::write_fig5(opt);
-  ghost_static::run_static(opt);
-  ghost_static::run_cost_table(opt);
+  if (only.empty() || only == "fig5") ghost_static::write_fig5(opt);
+  if (only.empty() || only == "static") ghost_static::run_static(opt);
+  if (only.empty() || only == "cost") ghost_static::run_cost_table(opt);
   std::printf("total %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 
   if (opt.plots) {

@@ -91,19 +91,55 @@ inline MapResult sphere_map(Real s, Real R, FluidSide side) {
 Real depressed_cubic_root(Real k);
 // The same root by Halley steps from its Taylor series (two for |k| <= 1/4, three up to
 // kTorusFastK); agrees with depressed_cubic_root to round-off there (tests/boundaries/maps_test.cpp).
-Real depressed_cubic_root_fast(Real k);
 inline constexpr Real kTorusFastK = 0.35;
 inline constexpr Real kCubicFoldK = -0.38490017945975050;  // -2 / (3 sqrt 3)
+inline Real depressed_cubic_root_fast(Real k) {
+  // Taylor series z = 1 + k/2 - 3k^2/8 + k^3/2 + O(k^4), then Halley's iteration on
+  // f(z) = z^3 - z - k (cubic convergence: |k| <= 1/4 gives an initial error < 3e-3, then
+  // < 1e-7, then round-off; |k| <= 0.35: a third step, measured error < 5e-16).
+  Real z = 1 + k * (0.5 + k * (-0.375 + 0.5 * k));
+  const int steps = std::abs(k) <= 0.25 ? 2 : 3;
+  for (int it = 0; it < steps; ++it) {
+    const Real f = z * z * z - z - k;
+    const Real df = 3 * z * z - 1;
+    z -= 2 * f * df / (2 * df * df - 6 * z * f);
+  }
+  return z;
+}
 
 // Inverse of the toroidal g(x) = Bu x^3/3 + x^2/2 (seed 004, eq. 29) on its increasing branch
 // 0 <= x <= 1/|Bu| (Bu < 0) or x >= 0 (Bu >= 0), i.e. the ghost stays on the fluid's side of the
 // torus axis. Equivalent to seed 004, eqs. (41)-(47), rewritten as x = sqrt(2c) / z with
 // z^3 - z = k, k = (2/3) Bu sqrt(2c), which is exact at Bu = 0 (x = sqrt(2c), eq. 44) instead of
 // the 0/0 of eq. (45). Returns NoRealSolution for c < 0 and BeyondAxis for k below the fold.
-MapResult torus_g_inverse(Real c, Real Bu);
+inline MapResult torus_g_inverse(Real c, Real Bu) {
+  if (c < 0) return {0, MapStatus::NoRealSolution};
+  const Real r = std::sqrt(2 * c);  // the cylinder's inverse, seed 004 eq. (44)
+  const Real k = (2.0 / 3.0) * Bu * r;
+  if (k < kCubicFoldK) return {1 / std::abs(Bu), MapStatus::BeyondAxis};
+  const Real z = std::abs(k) <= kTorusFastK ? depressed_cubic_root_fast(k) : depressed_cubic_root(k);
+  return {r / z, MapStatus::Ok};
+}
 
 // Torus of minor radius a, major radius R, at poloidal angle u (cos_u = cos u, u = 0 on the
 // outer equator): J = rho (R + rho cos u), Bu = cos(u)/R, seed 004, eqs. (27)-(29), (38)-(47).
-MapResult torus_map(Real s, Real a, Real R, Real cos_u, FluidSide side);
+inline MapResult torus_map(Real s, Real a, Real R, Real cos_u, FluidSide side) {
+  // seed 004, eqs. (28)-(29): g(rho') = 2 g(a) - g(rho), g(x) = Bu x^3/3 + x^2/2, Bu = cos(u)/R.
+  const Real sg = side_sign(side);
+  const Real Bu = cos_u * (1 / R);  // 1/R is hoisted out of a ghost loop
+  const Real t = sg * s;            // rho - a
+  // g(a + d) - g(a) = d q(d), q(d) = Bu (3a^2 + 3a d + d^2)/3 + a + d/2: differences without
+  // cancellation, so that psi(0) = 0 exactly and psi keeps its relative accuracy near the wall.
+  const auto q = [&](Real d) { return Bu * (a * a + a * d + d * d / 3) + a + d / 2; };
+  const Real dg = t * q(t);  // g(rho) - g(a)
+  const Real ga = a * a * (Bu * a / 3 + 0.5);
+  const MapResult inv = torus_g_inverse(ga - dg, Bu);  // rho' = g^-1(2 g(a) - g(rho))
+  if (!inv.ok()) return {sg * (inv.psi - a), inv.status};
+  // One refinement of d' = rho' - a from g(a + d') - g(a) = -dg (a secant step through 0).
+  const Real d0 = inv.psi - a;
+  const Real q0 = q(d0);
+  const Real d1 = q0 > 0 ? -dg / q0 : d0;
+  return {sg * d1, MapStatus::Ok};
+}
 
 }  // namespace sphark
