@@ -12,6 +12,7 @@ struct Options {
   int draws = 10;                      // random draws for Table 1
   unsigned seed = 1;
   bool plots = true;
+  bool relax_with_mirror = false;      // stage-2 relaxation with mirror ghosts instead of Psi
 };
 
 void write_fig5(const Options& opt);     // fig5.csv, fig5_branch.csv

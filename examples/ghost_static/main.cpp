@@ -20,6 +20,7 @@ void usage() {
       "  --seed S              random seed (default 1)\n"
       "  --no-plots            do not run vis/ghost_static.py at the end\n"
       "  --only PART           run one part: fig5, static or cost (default: all)\n"
+      "  --relax-map MAP       ghosts in the near-wall relaxation: psi (default) or mirror\n"
       "  --help                this text\n");
 }
 
@@ -72,6 +73,10 @@ int main(int argc, char** argv) {
     } else if (a == "--only") {
       only = value();
       if (only != "fig5" && only != "static" && only != "cost") bad(a, only, "expected fig5, static or cost");
+    } else if (a == "--relax-map") {
+      const std::string m = value();
+      if (m != "psi" && m != "mirror") bad(a, m, "expected psi or mirror");
+      opt.relax_with_mirror = m == "mirror";
     } else if (a == "--no-plots") {
       opt.plots = false;
     } else {

@@ -61,14 +61,15 @@ void run_static(const Options& opt) {
        2 * kPi * kPi * 3, -1},
   };
   std::ofstream summary(opt.out + "/static_summary.csv");
-  summary << "geometry,inner,h,H,bulk_rel_std,wall_rel_std,ghosts_psi,ghosts_mirror,invalid_psi,"
+  summary << "relax_map,geometry,inner,h,H,bulk_rel_std,wall_rel_std,ghosts_psi,ghosts_mirror,invalid_psi,"
              "ghost_dev_psi_pct,ghost_dev_mirror_pct,inner_dev_psi_pct,inner_dev_mirror_pct,relax_s,eval_s\n";
 
   for (const Geometry& geo : geometries) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::size_t n_box =
         static_cast<std::size_t>(std::lround(static_cast<Real>(opt.particles) * geo.relax_box.length().prod() / geo.volume));
-    const RelaxedSet<3> set = relaxed_set<3>(geo.wall, geo.relax_box, n_box, GhostMap::DensityPreserving, geo.eval_box,
+    const RelaxedSet<3> set = relaxed_set<3>(geo.wall, geo.relax_box, n_box,
+                                             opt.relax_with_mirror ? GhostMap::Mirror : GhostMap::DensityPreserving, geo.eval_box,
                                              [](const Vec<3>&) { return true; }, 3, opt.seed);
     const double t_relax = seconds_since(t0);
     const Real h = set.bulk.h, H = 2 * h;
@@ -85,7 +86,7 @@ void run_static(const Options& opt) {
     };
     const Real gm = dev(pm.s_ghost, pm.n_ghost, 0, H), g0 = dev(p0.s_ghost, p0.n_ghost, 0, H);
     const Real im = dev(pm.s_inner, pm.n_inner, -H, 0), i0 = dev(p0.s_inner, p0.n_inner, -H, 0);
-    summary << geo.name << "," << set.x.size() / 3 << "," << h << "," << H << "," << set.bulk.rel_std << ","
+    summary << (opt.relax_with_mirror ? "mirror" : "psi") << "," << geo.name << "," << set.x.size() / 3 << "," << h << "," << H << "," << set.bulk.rel_std << ","
             << set.wall.rel_std << "," << pm.s_ghost.size() << "," << p0.s_ghost.size() << "," << pm.invalid << "," << gm
             << "," << g0 << "," << im << "," << i0 << "," << t_relax << "," << t_eval << "\n";
     std::printf("static %-8s %zu inner, H = %.4f (relax %.1f s: bulk std %.2f%%, wall std %.2f%%; eval %.1f s)\n"
@@ -94,22 +95,27 @@ void run_static(const Options& opt) {
                 im, i0);
     std::fflush(stdout);
 
-    // profile: bin means of n / n0, bins H/4 wide; s < 0 inner, s > 0 ghosts
+    // profile: bin means of n / n0 in bins H/4 wide with an edge at s = 0; s < 0 inner, s > 0 ghosts
     const Real width = H / 4;
     Real s_max = 0;
     for (Real s : p0.s_ghost) s_max = std::max(s_max, s);
     for (Real s : pm.s_ghost) s_max = std::max(s_max, s);
     std::ofstream prof(opt.out + "/profile_" + geo.name + ".csv");
     prof << "s,n_mirror,n_map\n";
-    for (Real lo = geo.s_min; lo < s_max; lo += width) {
-      const Real hi = lo + width;
-      const auto bin = [&](const NodeDensityProfile<3>& p) -> std::string {
-        const BinMean b = lo < 0 ? mean_in_range(p.s_inner, p.n_inner, lo, std::min(hi, Real(0)))
-                                 : mean_in_range(p.s_ghost, p.n_ghost, lo, hi);
-        return b.count ? std::to_string(b.mean / n0) : std::string();
-      };
-      prof << lo + 0.5 * width << "," << bin(p0) << "," << bin(pm) << "\n";
-      if (lo < 0 && hi > 0) lo = -width;  // next bin starts at s = 0
+    const auto bin = [&](const std::vector<Real>& s, const std::vector<Real>& n, Real lo, Real hi) -> std::string {
+      const BinMean b = mean_in_range(s, n, lo, hi);
+      return b.count ? std::to_string(b.mean / n0) : std::string();
+    };
+    const int k_in = static_cast<int>(std::ceil(-geo.s_min / width));
+    for (int k = k_in; k >= 1; --k) {  // inner: (-k w, -(k-1) w]
+      const Real lo = -k * width, hi = -(k - 1) * width;
+      prof << lo + 0.5 * width << "," << bin(p0.s_inner, p0.n_inner, lo, hi) << "," << bin(pm.s_inner, pm.n_inner, lo, hi)
+           << "\n";
+    }
+    for (int k = 1; (k - 1) * width < s_max; ++k) {  // ghosts: ((k-1) w, k w]
+      const Real lo = (k - 1) * width, hi = k * width;
+      prof << lo + 0.5 * width << "," << bin(p0.s_ghost, p0.n_ghost, lo, hi) << "," << bin(pm.s_ghost, pm.n_ghost, lo, hi)
+           << "\n";
     }
     write_particles(opt.out + "/particles_" + geo.name + "_map.csv", set.x, pm, n0);
     write_particles(opt.out + "/particles_" + geo.name + "_mirror.csv", set.x, p0, n0);
