@@ -1,0 +1,39 @@
+// WCSPH (+ velocity cleaning) right-hand side on the water-drop lattice: ns per particle per
+// RHS call and pair interactions per second. Run: build/bin/bench_wcsph_rhs
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include "sphark/scenes/water_drop.hpp"
+
+using namespace sphark;
+
+static void BM_WcsphRhs(benchmark::State& state) {
+  WaterDropConfig cfg;
+  cfg.radius = std::sqrt(static_cast<Real>(state.range(0)) * cfg.spacing * cfg.spacing / kPi);
+  cfg.cleaning = state.range(1) != 0;
+  omp_set_num_threads(static_cast<int>(state.range(2)));
+  WaterDrop drop = make_water_drop(cfg);
+  OdeSystem& sys = drop.model->system();
+  std::vector<Real> ydot(drop.y0.size());
+  sys.rhs(0, drop.y0.data(), ydot.data());  // first call builds the lists
+  for (auto _ : state) {
+    sys.rhs(0, drop.y0.data(), ydot.data());
+    benchmark::DoNotOptimize(ydot.data());
+  }
+  // pairs: sum of neighbour counts within the support (lists include the skin)
+  const Real h = cfg.h_factor * cfg.spacing;
+  const Real pairs_per_particle = kPi * 4 * h * h / (cfg.spacing * cfg.spacing);
+  const auto n = static_cast<double>(drop.particles());
+  state.counters["ns_per_particle"] =
+      benchmark::Counter(n * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["pairs_per_s"] = benchmark::Counter(n * pairs_per_particle, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["particles"] = n;
+}
+BENCHMARK(BM_WcsphRhs)
+    ->ArgNames({"n", "clean", "threads"})
+    ->Args({2000, 1, 1})
+    ->Args({2000, 0, 1})
+    ->Args({20000, 1, 1})
+    ->Args({20000, 1, 2})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_MAIN();

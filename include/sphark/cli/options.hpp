@@ -1,0 +1,137 @@
+#pragma once
+// A small typed command-line parser. Each option writes straight into the caller's variable
+// (no string-keyed value store); the variable's value at add() time is the documented default.
+//
+//   Real t_end = 0.1;
+//   OptionParser p("water_drop", "2D water drop with divergence cleaning");
+//   p.add("--t-end", &t_end, "end time", Positive{});
+//   p.parse_or_exit(argc, argv);  // --help: prints help, exit 0; bad input: one line, exit 2
+//
+// Syntax: "--name value" or "--name=value"; flags take no value. The last occurrence wins.
+// Any bad input yields ONE line on stderr, e.g.
+//   water_drop: --rtol: bad value 'abc' (expected a positive real number)
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "sphark/core/types.hpp"
+#include "sphark/integrate/stepper_options.hpp"
+
+namespace sphark {
+
+// Constraints for numeric options (reals are also always required to be finite).
+struct Positive {};
+struct NonNegative {};
+struct Range {  // lo <= value <= hi
+  Real lo, hi;
+};
+using NumberConstraint = std::variant<std::monostate, Positive, NonNegative, Range>;
+// Allowed values of a string option (empty = any non-empty string).
+struct OneOf {
+  std::vector<std::string> values;
+};
+
+enum class ParseStatus { ok, help, usage_error };
+
+// Prints "<program>: <option>: <reason>" (or "<program>: <reason>" if option is empty) to
+// stderr and exits with status 2.
+[[noreturn]] void exit_usage_error(std::string_view program, std::string_view option,
+                                   std::string_view reason);
+
+class OptionParser {
+ public:
+  OptionParser(std::string program, std::string description);
+
+  // Value options. Names must start with "--"; throws std::logic_error for a duplicate name or
+  // a default that violates its own constraint (programmer errors).
+  void add(std::string name, Real* target, std::string help, NumberConstraint c = {});
+  void add(std::string name, int* target, std::string help, NumberConstraint c = {});
+  void add(std::string name, long* target, std::string help, NumberConstraint c = {});
+  void add(std::string name, std::string* target, std::string help, OneOf allowed = {});
+  void add(std::string name, std::filesystem::path* target, std::string help,
+           std::string metavar = "PATH");
+  // Comma-separated lists ("--resolutions 25,50,100"); every element meets the constraint.
+  void add(std::string name, std::vector<Real>* target, std::string help, NumberConstraint c = {});
+  void add(std::string name, std::vector<int>* target, std::string help, NumberConstraint c = {});
+  void add(std::string name, bool* target, std::string help) = delete;  // use flag / switch
+  // "--name": sets *target = value_when_given (e.g. --no-render sets render = false).
+  void add_flag(std::string name, bool* target, std::string help, bool value_when_given = true);
+  // "--name on|off".
+  void add_switch(std::string name, bool* target, std::string help);
+
+  // Parses argv[1..argc). If any argument is --help (or -h): prints help() to stdout and
+  // returns help. On bad input: prints one line to stderr and returns usage_error (targets
+  // may be partly assigned).
+  ParseStatus parse(int argc, const char* const* argv);
+  ParseStatus parse(int argc, char** argv) {
+    return parse(argc, const_cast<const char* const*>(argv));
+  }
+  // parse(), then exit(0) after --help and exit(2) after a usage error.
+  void parse_or_exit(int argc, const char* const* argv);
+  void parse_or_exit(int argc, char** argv) {
+    parse_or_exit(argc, const_cast<const char* const*>(argv));
+  }
+
+  // For checks across options after parsing: one line naming the option, exit 2.
+  [[noreturn]] void fail(std::string_view option, std::string_view reason) const;
+
+  std::string help() const;
+  const std::string& program() const { return program_; }
+
+ private:
+  struct Option {
+    std::string name;
+    std::string metavar;  // "REAL", "INT", "NAME", "DIR", "on|off", "" for flags
+    std::string help;
+    std::string default_text;
+    std::string expected;  // "a positive real number", ...
+    // Parses and assigns; returns false if the text is not acceptable.
+    std::function<bool(std::string_view)> assign;
+  };
+  void add_option(Option o);
+  const Option* find(std::string_view name) const;
+
+  std::string program_, description_;
+  std::vector<Option> options_;
+};
+
+// --- Options every example takes ----------------------------------------------------------
+struct CoreOptions {
+  std::filesystem::path out = "out";  // output directory
+  Real t_end = 1;                     // end time
+  std::string stepper = "ARKODE_DORMAND_PRINCE_7_4_5";  // ERK table | ark-imex | leapfrog
+  Real rtol = 1e-6;                   // adaptive-step relative tolerance
+  Real atol = 1e-9;                   // adaptive-step absolute tolerance
+  Real dt = 0;                        // fixed step; 0 = adaptive
+  Real output_every = 0;              // simulated time between frames; 0 = first and last only
+  int threads = 0;                    // OpenMP threads; 0 = OpenMP default
+  bool render = true;                 // render PNGs at the end (--no-render turns off)
+};
+
+// Registers --out, --t-end, --stepper, --rtol, --atol, --dt, --output-every, --threads,
+// --no-render with the current values of `o` as defaults. `steppers` is the list of valid
+// --stepper names (it lives in integrate/); o.stepper must be one of them.
+void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers);
+// The same with core_stepper_names().
+void add_core_options(OptionParser& p, CoreOptions& o);
+
+// Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog".
+std::vector<std::string> core_stepper_names();
+
+// StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt.
+StepperOptions stepper_options(const CoreOptions& o);
+
+// Sets the OpenMP thread count if threads > 0.
+void apply_thread_count(int threads);
+
+// Why `dir` cannot be used as an output directory (after trying to create it and its parents
+// and to write a probe file in it), or nullopt if it is fine.
+std::optional<std::string> output_dir_problem(const std::filesystem::path& dir);
+// output_dir_problem(), and on a problem: "<program>: --out: <reason>" on stderr, exit 2.
+void prepare_output_dir(const std::filesystem::path& dir, std::string_view program);
+
+}  // namespace sphark

@@ -1,0 +1,64 @@
+#pragma once
+// One interface over every time stepper: ARKODE ERKStep (any explicit Butcher table),
+// ARKODE ARKStep IMEX (stiff diagonal part implicit) and a kick-drift-kick leapfrog.
+//
+// Output times: every advance() lands exactly on t_out (ARKODE stop time), so the returned
+// state is a genuine step of the method, never ARKODE's dense-output interpolant (whose order
+// is below that of the high-order tables).
+//
+// Step-size bounds: max_dt when > 0. Adaptive ARKODE runs are also bounded by
+// cfl_safety * system.max_stable_dt(t, y), evaluated at the start of every advance() call (a
+// finite CFL limit is respected per output interval; ARKODE's error control normally keeps
+// the step below it anyway). Fixed-step runs take fixed_dt (the last step of an interval is
+// shortened to land on t_out).
+//
+// Recoverable RHS failures (return > 0): ARKODE 6.4.1 ERKStep/ARKStep turn them into
+// ARK_UNREC_RHSFUNC_ERR for explicit stages, so the ERK/IMEX stepper restarts (xxxStepReset)
+// from the last accepted step with a step 4x smaller than the failed one, and caps the step at
+// half the failed one (fixed-step runs: uses that smaller fixed step) until the next
+// advance(); up to 10 restarts without progress. The leapfrog halves dt and retries the step
+// (up to 10 times); the next step starts again from fixed_dt / the CFL step.
+//
+// Roots: ARKODE's root finding; the leapfrog checks g after every step and locates the root
+// on the leapfrog trajectory itself (Illinois iteration on the length of the last step), so
+// the returned state is a genuine leapfrog state at the returned time.
+//
+// ark-imex on a system without a stiff part is an error (no silent fallback to ERK).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sphark/integrate/ode_system.hpp"
+#include "sphark/integrate/stepper_options.hpp"
+
+namespace sphark {
+
+enum class AdvanceStatus { Reached, RootFound, Failed };
+
+class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
+ public:
+  virtual ~Stepper() = default;
+  // Advance to t_out. y (size system.size()) receives the state at t: t == t_out unless a root
+  // was found (RootFound) or the integration failed (Failed: y, t = last good state).
+  // The stepper keeps its own state: the content of y on entry is ignored.
+  // Throws std::invalid_argument if t_out is before the current time.
+  virtual AdvanceStatus advance(Real t_out, Real* y, Real& t) = 0;
+  virtual StepperStats stats() const = 0;
+  // After Failed: flag name + message, time, and system.last_error().
+  virtual std::string failure_reason() const = 0;
+  // After RootFound: one entry per g_k, +1 / -1 if g_k crossed zero increasing / decreasing.
+  virtual std::vector<int> roots_found() const = 0;
+};
+
+// Throws std::invalid_argument (one line naming the option and its value) for bad options:
+// unknown method or IMEX table, atol of wrong size, non-positive rtol, ark-imex on a system
+// without a stiff part, leapfrog without a position block or without any step-size limit.
+std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                      const Real* y0);
+
+// Every explicit Butcher table of SUNDIALS 6.4.1, in ARKODE's enum order.
+std::vector<std::string> erk_table_names();
+// True if the table has an embedding (needed for adaptive steps; otherwise fixed_dt is required).
+bool erk_table_has_embedding(const std::string& name);
+
+}  // namespace sphark

@@ -1,0 +1,49 @@
+#pragma once
+// Options and statistics shared by every time stepper (ARKODE ERK, ARKODE IMEX, leapfrog).
+#include <string>
+#include <vector>
+
+#include "sphark/core/types.hpp"
+
+namespace sphark {
+
+struct StepperOptions {
+  // Any explicit Butcher table of SUNDIALS 6.4.1 (see erk_table_names()), "ark-imex" or "leapfrog".
+  std::string method = "ARKODE_DORMAND_PRINCE_7_4_5";
+  Real rtol = 1e-6;
+  // Absolute tolerance: one value per state entry, or a single value for all; empty -> 1e-9.
+  std::vector<Real> atol;
+  // > 0: fixed step (ERK/IMEX: ARKODE fixed step, no error control; leapfrog: this dt).
+  Real fixed_dt = 0;
+  // Leapfrog without fixed_dt: dt = cfl_safety * system.max_stable_dt(t, y), every step.
+  // Adaptive ARKODE runs: the step is bounded by cfl_safety * max_stable_dt evaluated at the
+  // start of every advance() call (see stepper.hpp).
+  Real cfl_safety = 1.0;
+  // > 0: upper bound on every step of every method (except a fixed_dt run).
+  Real max_dt = 0;
+  // Internal steps allowed per advance() call (ARKODE's default is 500).
+  long max_steps = 1000000;
+  // ARK IMEX pair of ARKODE 6.4.1: ARK324L2SA (order 3), ARK436L2SA (4), ARK437L2SA (4),
+  // ARK548L2SA (5), ARK548L2SAb (5).
+  std::string imex_table = "ARK436L2SA";
+};
+
+struct StepperStats {
+  long steps = 0;                // accepted steps
+  long attempts = 0;             // step attempts (accepted + rejected + retried)
+  long rhs_evals = 0;            // evaluations of the explicit / full right-hand side
+  long rhs_evals_implicit = 0;   // evaluations of the implicit part (IMEX only)
+  long error_test_failures = 0;  // steps rejected by the temporal error test
+  long nonlinear_failures = 0;   // nonlinear solver convergence failures (IMEX only)
+  long rhs_recoveries = 0;       // restarts with a smaller step after a recoverable RHS failure
+  long linear_solves = 0;        // custom diagonal linear solves (IMEX only)
+  Real last_dt = 0;              // size of the last step taken
+  Real current_time = 0;         // time reached by the stepper
+};
+
+// One line for run summaries, e.g. "ERK ARKODE_DORMAND_PRINCE_7_4_5 adaptive rtol=1e-06 ...".
+std::string describe(const StepperOptions& opts);
+// One line: steps, attempts, rhs evals, error-test failures, ...
+std::string format_stats(const StepperStats& stats);
+
+}  // namespace sphark

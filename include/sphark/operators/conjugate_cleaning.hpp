@@ -1,0 +1,33 @@
+#pragma once
+// The conjugate operator pair of constrained divergence cleaning (seed 000, §II-C and §III-C).
+// For a vector field A (B for SPMHD, v for weakly compressible SPH) and the cleaning scalar psi:
+//
+//   difference divergence   div A_a = -1/(Omega_a rho_a) sum_b m_b (A_a - A_b) . grad_a W_ab(h_a)
+//                                                           seed 000, eq. (20) (B) and eq. (36) (v)
+//   symmetric gradient      grad psi_a / rho_a = sum_b m_b ( psi_a/(Omega_a rho_a^2) grad_a W_ab(h_a)
+//                                                          + psi_b/(Omega_b rho_b^2) grad_a W_ab(h_b) )
+//                                                           seed 000, eq. (23) (B) and eq. (39) (v)
+//
+// These are adjoint to each other under the energy inner products of eqs. (21)/(37), which is why
+// the cleaning subsystem conserves energy exactly when both are used together. The pair terms
+// below are the summands; callers accumulate them over the neighbour list.
+#include "sphark/core/types.hpp"
+
+namespace sphark {
+
+// Summand of the difference divergence: m_b (A_a - A_b) . grad_a W_ab(h_a).
+// div A_a = -(1 / (Omega_a rho_a)) * sum of these.
+template <class VA, class VB, class G>
+inline Real difference_divergence_term(Real m_b, const VA& A_a, const VB& A_b, const G& grad_w_a) {
+  return m_b * (A_a - A_b).dot(grad_w_a);
+}
+
+// Summand of the symmetric gradient (per unit density):
+// m_b ( q_a grad_a W_ab(h_a) + q_b grad_a W_ab(h_b) ),  q = psi / (Omega rho^2).
+// grad psi_a / rho_a = sum of these.
+template <class G>
+inline G symmetric_gradient_term(Real m_b, Real q_a, const G& grad_w_a, Real q_b, const G& grad_w_b) {
+  return m_b * (q_a * grad_w_a + q_b * grad_w_b);
+}
+
+}  // namespace sphark

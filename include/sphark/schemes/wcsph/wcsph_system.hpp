@@ -1,0 +1,80 @@
+#pragma once
+// Weakly compressible SPH (seed 000, §III-A) with constrained velocity divergence cleaning
+// (seed 000, §III-B/C) as an OdeSystem. State: x, v, rho [, psi]. Constant h.
+//
+//   dx/dt   = v
+//   dv/dt   = eq. (27) pressure + artificial viscosity + body force  - grad psi / rho  (eq. (39))
+//   drho/dt = eq. (28) continuity (sign as eq. (36)) + density diffusion (delta-SPH)
+//   dpsi/dt = -c_h^2 rho div v  (eq. (30), div v by eq. (36))  - psi / tau
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sphark/integrate/ode_system.hpp"
+#include "sphark/neighbours/neighbour_search.hpp"
+#include "sphark/schemes/wcsph/wcsph_params.hpp"
+#include "sphark/state/state_layout.hpp"
+
+namespace sphark {
+
+template <int D>
+struct WcsphDiagnostics {
+  Real kinetic_energy = 0;
+  Real internal_energy = 0;   // Tait EOS: integral of P / rho^2 d rho per unit mass
+  Real potential_energy = 0;  // body-force potential
+  Real psi_energy = 0;        // eq. (37): psi^2 / (2 c_h^2 rho^2) per unit mass
+  Real total_energy = 0;
+  Vec<D> momentum = Vec<D>::Zero();
+  Real mean_abs_div_v = 0;    // particle mean of |div v|, eq. (36)
+  Real max_rel_density_error = 0;  // max |rho - rho0| / rho0
+};
+
+template <int D, class Kernel>
+class WcsphSystem final : public OdeSystem {
+ public:
+  WcsphSystem(std::size_t particles, WcsphParams<D> params, std::optional<PeriodicBox<D>> box = std::nullopt);
+
+  const StateLayout& layout() const { return layout_; }
+  const WcsphParams<D>& params() const { return p_; }
+
+  // OdeSystem
+  std::size_t size() const override { return layout_.size(); }
+  int rhs(Real t, const Real* y, Real* ydot) noexcept override;
+  bool has_stiff_diagonal() const override { return p_.cleaning && p_.clean_sigma > 0; }
+  int stiff_diagonal(Real t, const Real* y, Real* c) noexcept override;
+  std::size_t position_offset() const override { return layout_.offset(Field::Position); }
+  std::size_t velocity_offset() const override { return layout_.offset(Field::Velocity); }
+  std::size_t position_size() const override { return layout_.field_size(Field::Position); }
+  Real max_stable_dt(Real t, const Real* y) noexcept override;
+  std::string last_error() const override { return error_; }
+
+  // Fields derived during the last rhs() call (valid after it): pressure, div v (eq. (36)).
+  const std::vector<Real>& pressure() const { return pressure_; }
+  const std::vector<Real>& div_v() const { return div_v_; }
+
+  // Energies, momentum and errors of state y (evaluates the RHS once for div v).
+  WcsphDiagnostics<D> diagnostics(Real t, const Real* y);
+
+  long neighbour_builds() const { return builds_; }
+  long rhs_calls() const { return rhs_calls_; }
+
+ private:
+  void update_neighbours(const Real* x);
+  int check_state(const Real* y);
+
+  WcsphParams<D> p_;
+  StateLayout layout_;
+  NeighbourSearch<D> search_;
+  bool built_ = false;
+  long builds_ = 0, rhs_calls_ = 0;
+  void renormalised_density_gradients(const Real* x, const Real* rho);
+
+  std::vector<Real> pressure_, p_over_rho2_, q_psi_, div_v_;
+  std::vector<Vec<D>> grad_rho_;
+  Real max_accel_ = 0;
+  std::string error_;
+};
+
+}  // namespace sphark

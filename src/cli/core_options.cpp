@@ -1,0 +1,83 @@
+// The options every example takes, the output-directory check and the thread count.
+#include <omp.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <system_error>
+
+#include "sphark/cli/options.hpp"
+#include "sphark/integrate/stepper.hpp"  // erk_table_names
+#include "sphark/io/csv_writer.hpp"        // temporary_sibling
+
+namespace sphark {
+
+void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers) {
+  p.add("--out", &o.out, "output directory, created with its parents", "DIR");
+  p.add("--t-end", &o.t_end, "end time", Positive{});
+  p.add("--stepper", &o.stepper, "time integrator", OneOf{std::move(steppers)});
+  p.add("--rtol", &o.rtol, "relative tolerance of the adaptive step", Positive{});
+  p.add("--atol", &o.atol, "absolute tolerance of the adaptive step", Positive{});
+  p.add("--dt", &o.dt, "fixed time step, 0 = adaptive", NonNegative{});
+  p.add("--output-every", &o.output_every,
+        "simulated time between output frames, 0 = first and last only", NonNegative{});
+  p.add("--threads", &o.threads, "OpenMP threads, 0 = OpenMP default", NonNegative{});
+  p.add_flag("--no-render", &o.render, "do not render pictures at the end", false);
+}
+
+void add_core_options(OptionParser& p, CoreOptions& o) {
+  add_core_options(p, o, core_stepper_names());
+}
+
+std::vector<std::string> core_stepper_names() {
+  std::vector<std::string> names = erk_table_names();
+  names.push_back("ark-imex");
+  names.push_back("leapfrog");
+  return names;
+}
+
+StepperOptions stepper_options(const CoreOptions& o) {
+  StepperOptions s;
+  s.method = o.stepper;
+  s.rtol = o.rtol;
+  s.atol = {o.atol};
+  s.fixed_dt = o.dt;
+  return s;
+}
+
+void apply_thread_count(int threads) {
+  if (threads > 0) omp_set_num_threads(threads);
+}
+
+namespace {
+// "'<path>'", built stepwise (operator+("'", std::string) trips GCC 12's -Wrestrict).
+std::string quoted(const std::filesystem::path& p) {
+  std::string q = "'";
+  q += p.string();
+  q += '\'';
+  return q;
+}
+}  // namespace
+
+std::optional<std::string> output_dir_problem(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  if (dir.empty()) return "empty directory name";
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) return "cannot create " + quoted(dir) + ": " + ec.message();
+  if (!fs::is_directory(dir, ec)) return quoted(dir) + " is not a directory";
+  // Probe: create and remove a file (access(2) is not reliable, e.g. when running as root on a
+  // read-only mount).
+  const fs::path probe = temporary_sibling(dir / "write_probe");
+  std::FILE* f = std::fopen(probe.c_str(), "w");
+  if (!f) return "cannot write in " + quoted(dir) + ": " + std::strerror(errno);
+  std::fclose(f);
+  fs::remove(probe, ec);
+  return std::nullopt;
+}
+
+void prepare_output_dir(const std::filesystem::path& dir, std::string_view program) {
+  if (auto problem = output_dir_problem(dir)) exit_usage_error(program, "--out", *problem);
+}
+
+}  // namespace sphark

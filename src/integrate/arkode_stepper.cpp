@@ -1,0 +1,209 @@
+#include "arkode_stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <limits>
+#include <stdexcept>
+
+namespace sphark::detail {
+namespace {
+
+constexpr int kMaxRecoveries = 10;    // consecutive restarts after recoverable RHS failures
+constexpr Real kRecoveryFactor = 0.25;  // step reduction per restart
+
+std::string at_time(Real t) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", t);
+  return buf;
+}
+
+}  // namespace
+
+// *GetReturnFlagName returns a malloc'ed string owned by the caller.
+std::string ArkodeStepper::flag_name(int flag) const {
+  std::unique_ptr<char, decltype(&std::free)> name(api_.flag_name(flag), &std::free);
+  return name ? std::string(name.get()) : "flag " + std::to_string(flag);
+}
+
+ArkodeStepper::ArkodeStepper(OdeSystem& system, const StepperOptions& opts, const ArkodeApi& api,
+                             Real t0, const Real* y0)
+    : system_(system),
+      opts_(opts),
+      api_(api),
+      ctx_(make_context()),
+      y_last_(y0, y0 + system.size()),
+      t_last_(t0),
+      y_accepted_(y_last_),
+      t_accepted_(t0) {}
+
+void ArkodeStepper::check(int flag, const char* call) const {
+  if (flag < 0)
+    throw std::runtime_error(std::string(api_.module) + call + " failed: " + flag_name(flag) +
+                             (arkode_message_.empty() ? "" : " (" + arkode_message_ + ")"));
+}
+
+void ArkodeStepper::configure() {
+  check(api_.set_user_data(mem_, this), "SetUserData");
+  check(api_.set_err_handler(mem_, &error_cb, this), "SetErrHandlerFn");
+  check(api_.set_postprocess_step(mem_, &step_done_cb), "SetPostprocessStepFn");
+  const std::size_t n = system_.size();
+  atol_ = opts_.atol.empty() ? std::vector<Real>{1e-9} : opts_.atol;
+  if (atol_.size() == n && n > 1) {
+    atol_view_ = make_view(n, atol_.data(), ctx_.get());
+    check(api_.sv_tolerances(mem_, opts_.rtol, atol_view_.get()), "SVtolerances");
+  } else {
+    check(api_.ss_tolerances(mem_, opts_.rtol, atol_.front()), "SStolerances");
+  }
+  check(api_.set_max_num_steps(mem_, opts_.max_steps), "SetMaxNumSteps");
+  if (opts_.fixed_dt > 0) check(api_.set_fixed_step(mem_, opts_.fixed_dt), "SetFixedStep");
+  if (system_.num_roots() > 0) {
+    check(api_.root_init(mem_, system_.num_roots(), &roots_cb), "RootInit");
+    check(api_.set_no_inactive_root_warn(mem_), "SetNoInactiveRootWarn");
+  }
+}
+
+// Before each advance(): land exactly on t_out (stop time: the returned state is a genuine step,
+// not ARKODE's dense-output interpolant, whose order is below that of high-order tables), and
+// bound adaptive steps by max_dt and cfl_safety * max_stable_dt at the current state.
+void ArkodeStepper::bound_step(Real t_out) {
+  realtype t_internal = 0;
+  check(api_.get_current_time(mem_, &t_internal), "GetCurrentTime");
+  if ((t_out - t_internal) * (t_out - t_last_) > 0) check(api_.set_stop_time(mem_, t_out), "SetStopTime");
+  if (opts_.fixed_dt > 0) {
+    if (fixed_step_reduced_) check(api_.set_fixed_step(mem_, opts_.fixed_dt), "SetFixedStep");
+    fixed_step_reduced_ = false;
+    return;
+  }
+  step_cap_ = opts_.max_dt > 0 ? opts_.max_dt : std::numeric_limits<Real>::infinity();
+  const Real stable = opts_.cfl_safety * system_.max_stable_dt(t_last_, y_last_.data());
+  if (stable > 0 && std::isfinite(stable)) step_cap_ = std::min(step_cap_, stable);
+  check(api_.set_max_step(mem_, std::isfinite(step_cap_) ? step_cap_ : 0.0), "SetMaxStep");
+}
+
+// ARKODE 6.4.1 turns a recoverable failure of an explicit RHS evaluation into
+// ARK_UNREC_RHSFUNC_ERR. Restart from the last accepted state with a step 4x smaller than the
+// failed one; adaptive runs also cap the step at half the failed one until the next advance()
+// (otherwise ARKODE regrows the step after the restart and fails again at once).
+bool ArkodeStepper::recover(int& consecutive) {
+  if (t_accepted_ != t_recovered_) consecutive = 0;  // progress since the last restart
+  t_recovered_ = t_accepted_;
+  if (++consecutive > kMaxRecoveries) return false;
+  realtype h = 0;
+  if (api_.get_current_step(mem_, &h) < 0 || !(std::abs(h) > 0)) return false;
+  h = kRecoveryFactor * std::abs(h);
+  auto y = make_view(y_accepted_.size(), y_accepted_.data(), ctx_.get());
+  if (api_.reset(mem_, t_accepted_, y.get()) < 0) return false;
+  if (opts_.fixed_dt > 0) {
+    if (api_.set_fixed_step(mem_, h) < 0) return false;
+  } else {
+    step_cap_ = std::min(step_cap_, 2 * h);
+    if (api_.set_init_step(mem_, h) < 0 || api_.set_max_step(mem_, step_cap_) < 0) return false;
+  }
+  fixed_step_reduced_ = opts_.fixed_dt > 0;
+  ++recoveries_;
+  return true;
+}
+
+AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
+  const std::size_t n = system_.size();
+  roots_.clear();
+  if (t_out < t_last_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_last_));
+  if (failed_ || t_out == t_last_) {
+    std::copy(y_last_.begin(), y_last_.end(), y);
+    t = t_last_;
+    return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
+  }
+  auto yout = make_view(n, y, ctx_.get());
+  bound_step(t_out);
+  for (int consecutive = 0;;) {
+    last_code_ = 0;
+    callback_error_.clear();
+    arkode_message_.clear();
+    const int flag = api_.evolve(mem_, t_out, yout.get(), &t, ARK_NORMAL);
+    if (flag >= 0) {
+      std::copy(y, y + n, y_last_.begin());
+      t_last_ = t;
+      if (flag != ARK_ROOT_RETURN) return AdvanceStatus::Reached;
+      roots_.assign(static_cast<std::size_t>(system_.num_roots()), 0);
+      check(api_.get_root_info(mem_, roots_.data()), "GetRootInfo");
+      return AdvanceStatus::RootFound;
+    }
+    const bool rhs_flag = flag == ARK_UNREC_RHSFUNC_ERR || flag == ARK_REPTD_RHSFUNC_ERR ||
+                          flag == ARK_FIRST_RHSFUNC_ERR;
+    if (rhs_flag && last_code_ > 0 && recover(consecutive)) continue;
+    failed_ = true;
+    failure_ = flag_name(flag) + " (" + std::to_string(flag) + ") at t=" +
+               at_time(t) + ": " + arkode_message_;
+    if (!callback_error_.empty()) failure_ += "; " + callback_error_;
+    if (consecutive > kMaxRecoveries)
+      failure_ += "; gave up after " + std::to_string(kMaxRecoveries) + " step reductions";
+    y_last_ = y_accepted_;
+    t_last_ = t_accepted_;
+    std::copy(y_last_.begin(), y_last_.end(), y);
+    t = t_last_;
+    return AdvanceStatus::Failed;
+  }
+}
+
+StepperStats ArkodeStepper::stats() const {
+  StepperStats s;
+  realtype h_initial = 0, h_current = 0, t_current = 0;
+  api_.get_step_stats(mem_, &s.steps, &h_initial, &s.last_dt, &h_current, &t_current);
+  api_.get_num_step_attempts(mem_, &s.attempts);
+  api_.get_num_err_test_fails(mem_, &s.error_test_failures);
+  s.rhs_recoveries = recoveries_;
+  s.current_time = t_last_;
+  add_method_stats(s);
+  return s;
+}
+
+void ArkodeStepper::record(const char* what, Real t, int code) noexcept {
+  last_code_ = code;
+  try {
+    callback_error_ = std::string(what) + " returned " + std::to_string(code) + " at t=" +
+                      at_time(t) + " (" + (code > 0 ? "recoverable" : "fatal") + ")";
+    const std::string reason = system_.last_error();
+    if (!reason.empty()) callback_error_ += ": " + reason;
+  } catch (const std::exception& e) {
+    record_exception(what, t, e.what());
+  } catch (...) {
+    record_exception(what, t, "unknown exception");
+  }
+}
+
+void ArkodeStepper::record_exception(const char* what, Real t, const char* message) noexcept {
+  last_code_ = -1;
+  try {
+    callback_error_ = std::string(what) + " threw an exception at t=" + at_time(t) + ": " + message;
+  } catch (...) {
+    callback_error_.clear();  // out of memory: the flag name still reports the failure
+  }
+}
+
+int ArkodeStepper::roots_cb(realtype t, N_Vector y, realtype* g, void* self) {
+  auto* s = static_cast<ArkodeStepper*>(self);
+  return s->guarded("roots", t, [&] { return s->system_.roots(t, N_VGetArrayPointer(y), g); });
+}
+
+int ArkodeStepper::step_done_cb(realtype t, N_Vector y, void* self) {
+  auto* s = static_cast<ArkodeStepper*>(self);
+  const Real* data = N_VGetArrayPointer(y);
+  std::copy(data, data + s->y_accepted_.size(), s->y_accepted_.begin());
+  s->t_accepted_ = t;
+  return 0;
+}
+
+void ArkodeStepper::error_cb(int code, const char* module, const char* function, char* msg,
+                             void* self) {
+  if (code == ARK_WARNING) return;
+  try {
+    static_cast<ArkodeStepper*>(self)->arkode_message_ =
+        std::string(module) + "::" + function + ": " + msg;
+  } catch (...) {
+  }
+}
+
+}  // namespace sphark::detail

@@ -1,0 +1,104 @@
+#pragma once
+// Common part of the ARKODE steppers (ERKStep and ARKStep IMEX): tolerances, step bounds,
+// root finding, error capture, recovery from recoverable RHS failures, statistics.
+// SUNDIALS 6.4.1 has no generic ARKode* API, so each stepper supplies a table of its
+// ERKStep* / ARKStep* functions (ArkodeApi). Private to src/integrate/.
+#include <string>
+#include <vector>
+
+#include "sphark/integrate/stepper.hpp"
+#include "sundials_handles.hpp"
+
+namespace sphark::detail {
+
+struct ArkodeApi {
+  const char* module;
+  int (*evolve)(void*, realtype, N_Vector, realtype*, int);
+  int (*reset)(void*, realtype, N_Vector);
+  int (*set_user_data)(void*, void*);
+  int (*set_err_handler)(void*, ARKErrHandlerFn, void*);
+  int (*set_postprocess_step)(void*, ARKPostProcessFn);
+  int (*ss_tolerances)(void*, realtype, realtype);
+  int (*sv_tolerances)(void*, realtype, N_Vector);
+  int (*set_fixed_step)(void*, realtype);
+  int (*set_init_step)(void*, realtype);
+  int (*set_max_step)(void*, realtype);
+  int (*set_stop_time)(void*, realtype);
+  int (*set_max_num_steps)(void*, long);
+  int (*root_init)(void*, int, ARKRootFn);
+  int (*set_no_inactive_root_warn)(void*);
+  int (*get_root_info)(void*, int*);
+  int (*get_step_stats)(void*, long*, realtype*, realtype*, realtype*, realtype*);
+  int (*get_current_step)(void*, realtype*);
+  int (*get_current_time)(void*, realtype*);
+  int (*get_num_step_attempts)(void*, long*);
+  int (*get_num_err_test_fails)(void*, long*);
+  char* (*flag_name)(long);
+};
+
+class ArkodeStepper : public Stepper {
+ public:
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override;
+  StepperStats stats() const override;
+  std::string failure_reason() const override { return failure_; }
+  std::vector<int> roots_found() const override { return roots_; }
+
+ protected:
+  ArkodeStepper(OdeSystem& system, const StepperOptions& opts, const ArkodeApi& api, Real t0,
+                const Real* y0);
+  // Called by the derived constructor once mem_ points at the ARKODE memory it owns.
+  void configure();
+  // Method-specific counters (RHS evaluations, linear solves, ...).
+  virtual void add_method_stats(StepperStats& s) const = 0;
+
+  // Runs a system call inside a C callback: exceptions become -1, non-zero codes are recorded.
+  template <class F>
+  int guarded(const char* what, Real t, F&& call) noexcept {
+    try {
+      const int code = call();
+      if (code != 0) record(what, t, code);
+      return code;
+    } catch (const std::exception& e) {
+      record_exception(what, t, e.what());
+    } catch (...) {
+      record_exception(what, t, "unknown exception");
+    }
+    return -1;
+  }
+
+  OdeSystem& system_;
+  const StepperOptions opts_;
+  const ArkodeApi& api_;
+  ContextPtr ctx_;
+  std::vector<Real> y_last_;  // state last returned by advance() (y0 at construction)
+  void* mem_ = nullptr;       // owned by the derived class (ErkMemPtr / ArkMemPtr)
+
+ private:
+  void record(const char* what, Real t, int code) noexcept;
+  void record_exception(const char* what, Real t, const char* message) noexcept;
+  void bound_step(Real t_out);
+  bool recover(int& consecutive);
+  void check(int flag, const char* call) const;
+  std::string flag_name(int flag) const;
+  static int roots_cb(realtype t, N_Vector y, realtype* g, void* self);
+  static int step_done_cb(realtype t, N_Vector y, void* self);
+  static void error_cb(int code, const char* module, const char* function, char* msg, void* self);
+
+  std::vector<Real> atol_;
+  VectorPtr atol_view_;
+  Real t_last_ = 0;              // time of y_last_
+  std::vector<Real> y_accepted_;  // state after the last accepted internal step
+  Real t_accepted_ = 0;
+  bool fixed_step_reduced_ = false;
+  Real step_cap_ = 0;  // max step of an adaptive run during the current advance()
+  int last_code_ = 0;         // last non-zero return of a system callback
+  std::string callback_error_;
+  std::string arkode_message_;
+  std::string failure_;
+  std::vector<int> roots_;
+  long recoveries_ = 0;
+  Real t_recovered_ = 0;  // t_accepted_ at the last recovery (progress resets the count)
+  bool failed_ = false;
+};
+
+}  // namespace sphark::detail

@@ -1,0 +1,249 @@
+// Kick-drift-kick leapfrog, one RHS evaluation per step (FSAL, Phantom style). With w every
+// entry except the positions x (velocity, density, energy, B, psi, ...):
+//   w_half  = w_n + dt/2 ẇ_n                  (kick)
+//   x_{n+1} = x_n + dt v_half                 (drift)
+//   w*      = w_half + dt/2 ẇ_n               (predictor for the velocity-dependent RHS)
+//   ẇ_{n+1} = f(t_{n+1}, x_{n+1}, w*)
+//   w_{n+1} = w_half + dt/2 ẇ_{n+1}           (kick)
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "steppers.hpp"
+
+namespace sphark::detail {
+namespace {
+
+constexpr int kMaxHalvings = 10;     // retries of one step after recoverable RHS failures
+constexpr int kMaxRootIterations = 100;
+
+std::string at_time(Real t) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", t);
+  return buf;
+}
+
+bool crossed(Real before, Real after) {
+  return (before < 0 && after >= 0) || (before > 0 && after <= 0);
+}
+
+class LeapfrogStepper final : public Stepper {
+ public:
+  LeapfrogStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0)
+      : system_(system), opts_(opts), n_(system.size()), t_(t0), y_(y0, y0 + n_),
+        dy_(n_), y_new_(n_), dy_new_(n_), pred_(n_),
+        g_(system.num_roots()), g_new_(system.num_roots()) {
+    const std::size_t p0 = system.position_offset(), np = system.position_size();
+    for (std::size_t k = 0; k < n_; ++k) is_position_.push_back(k >= p0 && k < p0 + np);
+  }
+
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
+    roots_.clear();
+    if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
+    if (!failed_ && !started_) start();
+    while (!failed_ && t_ < t_out) {
+      Real dt = choose_dt();
+      if (failed_) break;
+      bool lands = t_ + dt * (1 + 1e-10) >= t_out;  // no sliver steps before t_out
+      if (lands) dt = (t_out - t_) + t_lost_;
+      const Real planned = dt;
+      if (!attempt_with_retries(dt)) break;
+      lands = lands && dt == planned;
+      if (!g_.empty()) {
+        if (locate_root(dt)) {
+          finish(y, t);
+          return AdvanceStatus::RootFound;
+        }
+        if (failed_) break;
+      }
+      accept(dt, lands ? t_out : NAN);
+    }
+    finish(y, t);
+    return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
+  }
+
+  StepperStats stats() const override {
+    StepperStats s = stats_;
+    s.current_time = t_;
+    return s;
+  }
+  std::string failure_reason() const override { return failure_; }
+  std::vector<int> roots_found() const override { return roots_; }
+
+ private:
+  void start() {
+    started_ = true;
+    if (call("rhs", t_, [&] { return system_.rhs(t_, y_.data(), dy_.data()); }) != 0) fail("initial RHS");
+    if (!g_.empty() && call("roots", t_, [&] { return system_.roots(t_, y_.data(), g_.data()); }) != 0)
+      fail("initial root functions");
+  }
+
+  Real choose_dt() {
+    if (opts_.fixed_dt > 0) return opts_.fixed_dt;
+    Real dt = opts_.cfl_safety * system_.max_stable_dt(t_, y_.data());
+    if (opts_.max_dt > 0) dt = std::min(dt, opts_.max_dt);
+    if (!(dt > 0) || !std::isfinite(dt)) fail("no usable step size (cfl_safety * max_stable_dt = " + at_time(dt) + ")");
+    return dt;
+  }
+
+  // One KDK step of length dt from (t_, y_, dy_) into (y_new_, dy_new_). Returns the RHS code.
+  int step(Real dt) {
+    ++stats_.attempts;
+    for (std::size_t k = 0; k < n_; ++k)
+      if (!is_position_[k]) y_new_[k] = y_[k] + 0.5 * dt * dy_[k];  // kick
+    const std::size_t p0 = system_.position_offset(), v0 = system_.velocity_offset();
+    for (std::size_t i = 0; i < system_.position_size(); ++i)
+      y_new_[p0 + i] = y_[p0 + i] + dt * y_new_[v0 + i];  // drift
+    for (std::size_t k = 0; k < n_; ++k)
+      pred_[k] = is_position_[k] ? y_new_[k] : y_new_[k] + 0.5 * dt * dy_[k];  // predictor
+    const Real t1 = t_ + dt;
+    const int code = call("rhs", t1, [&] { return system_.rhs(t1, pred_.data(), dy_new_.data()); });
+    if (code != 0) return code;
+    for (std::size_t k = 0; k < n_; ++k)
+      if (!is_position_[k]) y_new_[k] += 0.5 * dt * dy_new_[k];  // kick
+    return 0;
+  }
+
+  // Recoverable RHS failure: halve dt and retry from the saved state (up to kMaxHalvings).
+  bool attempt_with_retries(Real& dt) {
+    for (int halvings = 0;; ++halvings) {
+      const int code = step(dt);
+      if (code == 0) return true;
+      if (code < 0 || halvings == kMaxHalvings) {
+        fail(code < 0 ? "fatal RHS failure" : "recoverable RHS failure persists after " +
+                                                   std::to_string(kMaxHalvings) + " halvings of dt");
+        return false;
+      }
+      dt *= 0.5;
+      ++stats_.rhs_recoveries;
+    }
+  }
+
+  // After a trial step of length dt: if some g_k changed sign, find the earliest root on the
+  // leapfrog trajectory by Illinois iteration on the step length, accept the state just past
+  // it (g_k has its new sign there) and return true.
+  bool locate_root(Real dt) {
+    if (!eval_roots(t_ + dt)) return false;
+    if (!any_crossed()) return false;
+    const std::vector<Real> g_end = g_new_;
+    Real tau = dt;
+    for (std::size_t k = 0; k < g_.size() && !failed_; ++k)
+      if (crossed(g_[k], g_end[k])) tau = std::min(tau, illinois(k, dt, g_end[k]));
+    if (failed_) return false;
+    if (step(tau) != 0) return fail("RHS during root location"), false;
+    if (!eval_roots(t_ + tau)) return false;
+    roots_.assign(g_.size(), 0);
+    for (std::size_t k = 0; k < g_.size(); ++k)
+      if (crossed(g_[k], g_new_[k])) roots_[k] = g_new_[k] > g_[k] ? 1 : -1;
+    accept(tau);
+    return true;
+  }
+
+  // g at the trial state y_new_ (time t) into g_new_.
+  bool eval_roots(Real t) {
+    if (call("roots", t, [&] { return system_.roots(t, y_new_.data(), g_new_.data()); }) == 0) return true;
+    fail("root functions");
+    return false;
+  }
+
+  bool any_crossed() const {
+    for (std::size_t k = 0; k < g_.size(); ++k)
+      if (crossed(g_[k], g_new_[k])) return true;
+    return false;
+  }
+
+  // Root of g_k(step(tau)) in (0, dt]; returns the upper end of the final bracket.
+  Real illinois(std::size_t k, Real dt, Real g_dt) {
+    Real lo = 0, hi = dt, g_lo = g_[k], g_hi = g_dt;
+    const Real tol = 100 * std::numeric_limits<Real>::epsilon() * (std::abs(t_) + dt);
+    int side = 0;
+    for (int it = 0; it < kMaxRootIterations && hi - lo > tol && g_hi != 0; ++it) {
+      const Real tau = std::clamp(hi - g_hi * (hi - lo) / (g_hi - g_lo), lo + 0.25 * tol, hi - 0.25 * tol);
+      if (step(tau) != 0) return fail("RHS during root location"), dt;
+      if (!eval_roots(t_ + tau)) return dt;
+      const Real g = g_new_[k];
+      if (crossed(g_[k], g)) {
+        hi = tau, g_hi = g;
+        if (side == 1) g_lo *= 0.5;  // Illinois: halve the stale end
+        side = 1;
+      } else {
+        lo = tau, g_lo = g;
+        if (side == -1) g_hi *= 0.5;
+        side = -1;
+      }
+    }
+    return hi;
+  }
+
+  // Time advances by compensated (Kahan) summation, so that long fixed-step runs keep exact
+  // step lengths; a step landing on an output time sets it exactly.
+  void accept(Real dt, Real t_landed = NAN) {
+    std::swap(y_, y_new_);
+    std::swap(dy_, dy_new_);
+    std::swap(g_, g_new_);  // g_new_ holds g at the accepted state (when there are roots)
+    if (std::isnan(t_landed)) {
+      const Real increment = dt - t_lost_, t_new = t_ + increment;
+      t_lost_ = (t_new - t_) - increment;
+      t_ = t_new;
+    } else {
+      t_ = t_landed;
+      t_lost_ = 0;
+    }
+    ++stats_.steps;
+    stats_.last_dt = dt;
+  }
+
+  void finish(Real* y, Real& t) const {
+    std::copy(y_.begin(), y_.end(), y);
+    t = t_;
+  }
+
+  template <class F>
+  int call(const char* what, Real t, F&& f) {
+    try {
+      const int code = f();
+      if (std::strcmp(what, "rhs") == 0) ++stats_.rhs_evals;
+      if (code != 0) {
+        callback_error_ = std::string(what) + " returned " + std::to_string(code) + " at t=" + at_time(t);
+        const std::string reason = system_.last_error();
+        if (!reason.empty()) callback_error_ += ": " + reason;
+      }
+      return code;
+    } catch (const std::exception& e) {
+      callback_error_ = std::string(what) + " threw an exception at t=" + at_time(t) + ": " + e.what();
+    } catch (...) {
+      callback_error_ = std::string(what) + " threw an unknown exception at t=" + at_time(t);
+    }
+    return -1;
+  }
+
+  void fail(const std::string& what) {
+    failed_ = true;
+    failure_ = "leapfrog: " + what + " at t=" + at_time(t_);
+    if (!callback_error_.empty()) failure_ += "; " + callback_error_;
+  }
+
+  OdeSystem& system_;
+  const StepperOptions opts_;
+  const std::size_t n_;
+  Real t_;
+  Real t_lost_ = 0;  // Kahan compensation of t_
+  std::vector<Real> y_, dy_, y_new_, dy_new_, pred_, g_, g_new_;
+  std::vector<bool> is_position_;
+  std::vector<int> roots_;
+  StepperStats stats_;
+  std::string failure_, callback_error_;
+  bool started_ = false, failed_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts,
+                                               Real t0, const Real* y0) {
+  return std::make_unique<LeapfrogStepper>(system, opts, t0, y0);
+}
+
+}  // namespace sphark::detail

@@ -1,0 +1,140 @@
+// make_stepper (option validation and dispatch), the ERK table list, run-summary strings.
+#include "sphark/integrate/stepper.hpp"
+
+#include <arkode/arkode_butcher_erk.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+
+#include "steppers.hpp"
+
+namespace sphark {
+namespace {
+
+std::string num(Real x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+[[noreturn]] void bad(const std::string& option, const std::string& value, const std::string& why) {
+  throw std::invalid_argument(option + "=" + value + ": " + why);
+}
+
+bool is_erk(const std::string& method) {
+  const auto names = erk_table_names();
+  return std::find(names.begin(), names.end(), method) != names.end();
+}
+
+void validate_common(const OdeSystem& system, const StepperOptions& o) {
+  const std::size_t n = system.size();
+  if (!(o.rtol > 0)) bad("rtol", num(o.rtol), "must be > 0");
+  if (!o.atol.empty() && o.atol.size() != 1 && o.atol.size() != n)
+    bad("atol", std::to_string(o.atol.size()) + " values",
+        "give one value or one per state entry (" + std::to_string(n) + ")");
+  for (Real a : o.atol)
+    if (!(a >= 0)) bad("atol", num(a), "must be >= 0");
+  if (!(o.fixed_dt >= 0)) bad("fixed_dt", num(o.fixed_dt), "must be >= 0");
+  if (!(o.max_dt >= 0)) bad("max_dt", num(o.max_dt), "must be >= 0");
+  if (!(o.cfl_safety > 0)) bad("cfl_safety", num(o.cfl_safety), "must be > 0");
+  if (o.max_steps <= 0) bad("max_steps", std::to_string(o.max_steps), "must be > 0");
+}
+
+void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, const Real* y0) {
+  const std::size_t n = system.size(), np = system.position_size();
+  const std::size_t xp = system.position_offset(), vp = system.velocity_offset();
+  if (np == 0) bad("method", o.method, "the system declares no position block (position_size() == 0)");
+  if (xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np))
+    bad("method", o.method, "position/velocity blocks overlap or exceed the state size");
+  const bool bounded = o.fixed_dt > 0 || o.max_dt > 0 || std::isfinite(system.max_stable_dt(t0, y0));
+  if (!bounded) bad("method", o.method, "needs fixed_dt, max_dt or a finite system max_stable_dt");
+}
+
+}  // namespace
+
+// ARKODE 6.4.1 enum order (arkode/arkode_butcher_erk.h); names accepted by ERKStepSetTableName.
+std::vector<std::string> erk_table_names() {
+  static const char* const kNames[] = {
+      "ARKODE_HEUN_EULER_2_1_2",      "ARKODE_BOGACKI_SHAMPINE_4_2_3",
+      "ARKODE_ARK324L2SA_ERK_4_2_3",  "ARKODE_ZONNEVELD_5_3_4",
+      "ARKODE_ARK436L2SA_ERK_6_3_4",  "ARKODE_SAYFY_ABURUB_6_3_4",
+      "ARKODE_CASH_KARP_6_4_5",       "ARKODE_FEHLBERG_6_4_5",
+      "ARKODE_DORMAND_PRINCE_7_4_5",  "ARKODE_ARK548L2SA_ERK_8_4_5",
+      "ARKODE_VERNER_8_5_6",          "ARKODE_FEHLBERG_13_7_8",
+      "ARKODE_KNOTH_WOLKE_3_3",       "ARKODE_ARK437L2SA_ERK_7_3_4",
+      "ARKODE_ARK548L2SAb_ERK_8_4_5",
+  };
+  static_assert(std::size(kNames) == ARKODE_MAX_ERK_NUM - ARKODE_MIN_ERK_NUM + 1);
+  return {std::begin(kNames), std::end(kNames)};
+}
+
+bool erk_table_has_embedding(const std::string& name) {
+  ARKodeButcherTable table = ARKodeButcherTable_LoadERKByName(name.c_str());
+  if (table == nullptr) return false;
+  const bool embedded = table->d != nullptr && table->p > 0;
+  ARKodeButcherTable_Free(table);
+  return embedded;
+}
+
+std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                      const Real* y0) {
+  validate_common(system, opts);
+  if (opts.method == "leapfrog") {
+    validate_leapfrog(system, opts, t0, y0);
+    return detail::make_leapfrog_stepper(system, opts, t0, y0);
+  }
+  if (opts.method == "ark-imex") {
+    if (!system.has_stiff_diagonal())
+      bad("method", opts.method, "the system has no stiff diagonal part (use an ERK table)");
+    if (!detail::is_imex_pair(opts.imex_table))
+      bad("imex_table", opts.imex_table,
+          "unknown ARK pair (ARK324L2SA, ARK436L2SA, ARK437L2SA, ARK548L2SA, ARK548L2SAb)");
+    return detail::make_imex_stepper(system, opts, t0, y0);
+  }
+  if (!is_erk(opts.method))
+    bad("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\" or \"leapfrog\"");
+  if (opts.fixed_dt <= 0 && !erk_table_has_embedding(opts.method))
+    bad("method", opts.method, "table has no embedding: adaptive steps impossible, set fixed_dt");
+  return detail::make_erk_stepper(system, opts, t0, y0);
+}
+
+std::string describe(const StepperOptions& o) {
+  std::ostringstream s;
+  if (o.method == "leapfrog") {
+    s << "leapfrog KDK, ";
+    if (o.fixed_dt > 0) s << "fixed dt=" << o.fixed_dt;
+    else s << "dt=" << o.cfl_safety << " x max_stable_dt";
+    if (o.fixed_dt <= 0 && o.max_dt > 0) s << ", max_dt=" << o.max_dt;
+    return s.str();
+  }
+  if (o.method == "ark-imex") s << "ARKStep IMEX " << o.imex_table;
+  else s << "ERKStep " << o.method;
+  if (o.fixed_dt > 0) {
+    s << ", fixed dt=" << o.fixed_dt;
+  } else {
+    s << ", adaptive rtol=" << o.rtol << " atol=";
+    if (o.atol.size() > 1) s << "per-entry (" << o.atol.size() << ")";
+    else s << (o.atol.empty() ? 1e-9 : o.atol.front());
+    if (o.max_dt > 0) s << " max_dt=" << o.max_dt;
+    s << " dt<=" << o.cfl_safety << " x max_stable_dt";
+  }
+  s << ", max_steps=" << o.max_steps;
+  return s.str();
+}
+
+std::string format_stats(const StepperStats& st) {
+  std::ostringstream s;
+  s << "steps=" << st.steps << " attempts=" << st.attempts << " rhs_evals=" << st.rhs_evals;
+  if (st.rhs_evals_implicit > 0) s << " rhs_evals_implicit=" << st.rhs_evals_implicit;
+  s << " err_test_fails=" << st.error_test_failures;
+  if (st.rhs_evals_implicit > 0)
+    s << " nonlin_fails=" << st.nonlinear_failures << " lin_solves=" << st.linear_solves;
+  s << " rhs_recoveries=" << st.rhs_recoveries << " last_dt=" << st.last_dt
+    << " t=" << st.current_time;
+  return s.str();
+}
+
+}  // namespace sphark

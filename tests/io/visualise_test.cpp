@@ -1,0 +1,109 @@
+// run_python: finds vis/ from SPHARK_SOURCE_DIR, reports failure with false (never aborts).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include "sphark/io/csv_writer.hpp"
+#include "sphark/io/visualise.hpp"
+#include "sphark/io/vtk_series.hpp"
+#include "temp_dir.hpp"
+
+namespace sphark {
+namespace {
+
+TEST(RunPython, MissingScriptIsAWarningNotAnAbort) {
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_python("no_such_script.py", {}, false));
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err.rfind("sphark: warning: vis/no_such_script.py: script not found", 0), 0u) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
+}
+
+TEST(RunProcess, TimeoutKillsTheProcessGroup) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // A shell whose child (sleep) shares its process group: both must go.
+  const ProcessResult r = run_process({"/bin/sh", "-c", "sleep 30; exit 0"}, 0.3);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error, "still running after 0.3 s, killed");
+  EXPECT_LT(s, 3.0);
+  EXPECT_TRUE(run_process({"/bin/sh", "-c", "exit 0"}, 10).ok);
+  EXPECT_EQ(run_process({"/bin/sh", "-c", "exit 3"}, 10).error, "exited with status 3");
+  EXPECT_EQ(run_process({"/bin/sh", "-c", "kill -9 $$"}, 10).error, "killed by signal 9");
+  EXPECT_EQ(run_process({"/no/such/program"}, 10).error,
+            "cannot start /no/such/program: No such file or directory");
+}
+
+TEST(RunPython, ExitStatusDecidesTheResult) {
+  ASSERT_TRUE(std::filesystem::is_regular_file(vis_dir() / "charts.py"));
+  EXPECT_TRUE(run_python("charts.py", {"--help"}, false));
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_python("charts.py", {"--no-such-flag"}, false));
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("sphark: warning: vis/charts.py: exited with status 2"), std::string::npos)
+      << err;
+}
+
+// Width and height from a PNG's IHDR chunk; {0, 0} if the file is not a PNG.
+std::pair<std::uint32_t, std::uint32_t> png_size(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!in || !std::equal(sig, sig + 8, h) || std::string(h + 12, h + 16) != "IHDR") return {0, 0};
+  auto be32 = [&](int o) {
+    return std::uint32_t(h[o]) << 24 | std::uint32_t(h[o + 1]) << 16 |
+           std::uint32_t(h[o + 2]) << 8 | std::uint32_t(h[o + 3]);
+  };
+  return {be32(16), be32(20)};
+}
+
+TEST(RunPython, ChartFromCsvWriterOutput) {
+  test::TempDir dir;
+  {
+    CsvWriter csv(dir.path() / "diag.csv", {"t", "mean_abs_div_v", "energy"});
+    for (int k = 0; k <= 50; ++k) csv.row({0.02 * k, std::exp(-4.0 * 0.02 * k), 1.0});
+  }
+  const auto png = dir.path() / "div.png";
+  ASSERT_TRUE(run_python("charts.py", {"--csv", (dir.path() / "diag.csv").string() + ":run",
+                                       "--x", "t", "--y", "mean_abs_div_v", "--logy",
+                                       "--y-extra", "energy", "--out", png.string()},
+                         false));
+  // 6.4 x 4.4 inches at 150 dpi.
+  EXPECT_EQ(png_size(png), (std::pair<std::uint32_t, std::uint32_t>{960, 660}));
+}
+
+TEST(RunPython, RendersAFrameFromVtkSeriesWriter) {
+  test::TempDir dir;
+  std::vector<Real> pos, rho;
+  for (int i = 0; i < 20; ++i) {
+    for (int j = 0; j < 10; ++j) {
+      pos.insert(pos.end(), {0.05 * i, 0.05 * j});
+      rho.push_back(1000 + i);
+    }
+  }
+  VtkSeriesWriter w(dir.path(), "frame");
+  w.write(ParticleFrame{2, rho.size(), pos.data(), {{"density", rho.data(), 1}}}, 0.5);
+  const auto png = dir.path() / "frame.png";
+  ASSERT_TRUE(run_python("render_particles.py",
+                         {w.pvd_path().string(), "--array", "density", "--out", png.string()},
+                         true));
+  const auto [width, height] = png_size(png);
+  EXPECT_GT(width, 400u);
+  EXPECT_GT(height, 200u);
+  // A missing array is the script's usage error, reported as a warning here.
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_python("render_particles.py",
+                          {w.pvd_path().string(), "--array", "nope", "--out", png.string()},
+                          false));  // fails before rendering: no display needed
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("no point array 'nope'"), std::string::npos) << err;
+  EXPECT_NE(err.find("sphark: warning: vis/render_particles.py: exited with status 2"),
+            std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace sphark
