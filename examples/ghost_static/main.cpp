@@ -7,6 +7,7 @@
 #include <string>
 
 #include "ghost_static.hpp"
+#include "sphark/io/visualise.hpp"
 
 namespace {
 
@@ -14,7 +15,7 @@ void usage() {
   std::printf(
       "ghost_static: ghost particles at curved walls, static tests of seed 004 (Figs. 5-8, Table 1)\n"
       "  --out DIR             output directory (default out/ghost_static)\n"
-      "  --particles N         relaxed inner particles per geometry, Figs. 6-8 (default 50000)\n"
+      "  --particles N         relaxed inner particles per geometry, Figs. 6-8 (default 50000, min 2000)\n"
       "  --cost-particles N    random inner particles for Table 1 (default 1000000)\n"
       "  --draws N             random draws for Table 1 (default 10)\n"
       "  --seed S              random seed (default 1)\n"
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
       opt.out = value();
       if (opt.out.empty()) bad(a, opt.out, "empty path");
     } else if (a == "--particles") {
-      opt.particles = parse_count(a, value(), 1000, 5000000);
+      opt.particles = parse_count(a, value(), 2000, 5000000);
     } else if (a == "--cost-particles") {
       opt.cost_particles = parse_count(a, value(), 1000, 100000000);
     } else if (a == "--draws") {
@@ -89,18 +90,20 @@ int main(int argc, char** argv) {
   if (ec) bad("--out", opt.out, ec.message().c_str());
 
   const auto t0 = std::chrono::steady_clock::now();
-  if (only.empty() || only == "fig5") ghost_static::write_fig5(opt);
-  if (only.empty() || only == "static") ghost_static::run_static(opt);
-  if (only.empty() || only == "cost") ghost_static::run_cost_table(opt);
+  try {
+    if (only.empty() || only == "fig5") ghost_static::write_fig5(opt);
+    if (only.empty() || only == "static") ghost_static::run_static(opt);
+    if (only.empty() || only == "cost") ghost_static::run_cost_table(opt);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ghost_static: error: %s\n", e.what());
+    return 1;
+  }
   std::printf("total %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 
   if (opt.plots) {
-    const std::string cmd = std::string("/usr/bin/python3 ") + SPHARK_SOURCE_DIR + "/vis/ghost_static.py '" + opt.out + "'";
-    std::printf("%s\n", cmd.c_str());
-    if (std::system(cmd.c_str()) != 0) {
-      std::fprintf(stderr, "ghost_static: plotting failed (%s)\n", cmd.c_str());
-      return 1;
-    }
+    std::printf("/usr/bin/python3 vis/ghost_static.py %s\n", opt.out.c_str());
+    std::fflush(stdout);
+    if (!sphark::run_python("ghost_static.py", {opt.out}, false)) return 1;  // warning printed
   }
   return 0;
 }

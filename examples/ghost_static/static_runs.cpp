@@ -11,6 +11,7 @@
 
 #include "ghost_static.hpp"
 #include "sphark/boundaries/static_profile.hpp"
+#include "sphark/io/vtk_series.hpp"
 
 namespace ghost_static {
 
@@ -47,6 +48,25 @@ void write_particles(const std::string& path, const std::vector<Real>& x, const 
   for (std::size_t g = 0; g < p.s_ghost.size(); ++g)
     f << p.x_ghost[3 * g] << "," << p.x_ghost[3 * g + 1] << "," << p.x_ghost[3 * g + 2] << "," << p.s_ghost[g] << ","
       << p.n_ghost[g] / n0 << ",1\n";
+}
+
+// The same particles as a .vtp (ParaView): arrays node_density (n / n0), s, ghost (0/1).
+void write_particles_vtp(const std::string& path, const std::vector<Real>& x, const NodeDensityProfile<3>& p, Real n0) {
+  std::vector<Real> pos(x);
+  pos.insert(pos.end(), p.x_ghost.begin(), p.x_ghost.end());
+  std::vector<Real> n, s, ghost;
+  for (Real v : p.n_inner) n.push_back(v / n0);
+  for (Real v : p.n_ghost) n.push_back(v / n0);
+  s = p.s_inner;
+  s.insert(s.end(), p.s_ghost.begin(), p.s_ghost.end());
+  ghost.assign(p.s_inner.size(), 0.0);
+  ghost.resize(s.size(), 1.0);
+  ParticleFrame frame;
+  frame.dim = 3;
+  frame.count = s.size();
+  frame.positions = pos.data();
+  frame.arrays = {{"node_density", n.data(), 1}, {"s", s.data(), 1}, {"ghost", ghost.data(), 1}};
+  write_vtp(path, frame, 0);
 }
 
 }  // namespace
@@ -119,8 +139,10 @@ void run_static(const Options& opt) {
     }
     write_particles(opt.out + "/particles_" + geo.name + "_map.csv", set.x, pm, n0);
     write_particles(opt.out + "/particles_" + geo.name + "_mirror.csv", set.x, p0, n0);
+    write_particles_vtp(opt.out + "/particles_" + geo.name + "_map.vtp", set.x, pm, n0);
+    write_particles_vtp(opt.out + "/particles_" + geo.name + "_mirror.vtp", set.x, p0, n0);
   }
-  std::printf("static: %s/static_summary.csv, profile_<geometry>.csv, particles_<geometry>_{map,mirror}.csv\n",
+  std::printf("static: %s/static_summary.csv, profile_<geometry>.csv, particles_<geometry>_{map,mirror}.{csv,vtp}\n",
               opt.out.c_str());
 }
 
