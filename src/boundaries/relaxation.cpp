@@ -48,29 +48,6 @@ void node_density(const NeighbourSearch<D>& search, const Real* x, std::size_t n
 }
 
 template <int D>
-void node_density_at(const NeighbourSearch<D>& search, const Real* x, const Real* q, std::size_t count,
-                     Real h, Real* out) {
-  using K = WendlandC4<D>;
-  const Real H = K::support * h;
-#pragma omp parallel
-  {
-    std::vector<std::uint32_t> nb;
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < count; ++i) {
-      const Vec<D> p = Eigen::Map<const Vec<D>>(q + D * i);
-      search.query(p, H, nb);
-      Real sum = 0;
-      for (std::uint32_t j : nb) {
-        Vec<D> d = p - Eigen::Map<const Vec<D>>(x + D * j);
-        if (search.box()) d = search.box()->minimum_image(d);
-        sum += K::w(d.norm(), h);
-      }
-      out[i] = sum;
-    }
-  }
-}
-
-template <int D>
 std::vector<Real> random_points(std::size_t n, const PeriodicBox<D>& box, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<Real> U(0, 1);
@@ -126,7 +103,8 @@ RelaxReport relax_uniform(std::vector<Real>& x, const PeriodicBox<D>& box, const
     rep.mean = st.mean;
     rep.rel_std = st.rel_std;
     rep.max_rel_dev = st.max_rel_dev;
-    if (std::getenv("SPHARK_RELAX_TRACE")) std::fprintf(stderr, "relax %d std %.4g max %.4g\n", it, st.rel_std, st.max_rel_dev);
+    if (std::getenv("SPHARK_RELAX_TRACE"))  // progress on stderr when set
+      std::fprintf(stderr, "relax %d std %.4g max %.4g\n", it, st.rel_std, st.max_rel_dev);
     if (st.rel_std <= opt.tolerance || it >= opt.max_iterations) break;
 
     const NeighbourList& list = search.list();
@@ -154,8 +132,6 @@ RelaxReport relax_uniform(std::vector<Real>& x, const PeriodicBox<D>& box, const
 
 template void node_density<2>(const NeighbourSearch<2>&, const Real*, std::size_t, Real, Real*);
 template void node_density<3>(const NeighbourSearch<3>&, const Real*, std::size_t, Real, Real*);
-template void node_density_at<2>(const NeighbourSearch<2>&, const Real*, const Real*, std::size_t, Real, Real*);
-template void node_density_at<3>(const NeighbourSearch<3>&, const Real*, const Real*, std::size_t, Real, Real*);
 template std::vector<Real> random_points<2>(std::size_t, const PeriodicBox<2>&, unsigned);
 template std::vector<Real> random_points<3>(std::size_t, const PeriodicBox<3>&, unsigned);
 template std::vector<Real> jittered_lattice<2>(std::size_t, const PeriodicBox<2>&, Real, unsigned);
