@@ -119,6 +119,7 @@ def work_precision_chart(cs, path, y, ylabel, title, both=True):
     fig.tight_layout(rect=(0, 0.13, 1, 0.95))
     fig.savefig(path, dpi=150)
     plt.close(fig)
+    print(path)
 
 
 def stability_chart(stab, rows, path):
@@ -129,6 +130,7 @@ def stability_chart(stab, rows, path):
         a.barh(names, [r["cfl_stable"] for r in stab], color="tab:blue", label="largest stable CFL")
         a.barh(names, [r["cfl_stable"] / stages(r["method"]) for r in stab], color="tab:orange", height=0.4,
                label="per RHS evaluation (stable CFL / RHS per step)")
+        a.axvline(0.25, color="grey", linestyle="--", linewidth=1, label="cap of the capped adaptive runs (0.25)")
         a.set_xlabel("CFL number  dt / (h / (c + |v|))")
         a.legend(fontsize=8)
         a.grid(True, axis="x", alpha=0.3)
@@ -142,17 +144,22 @@ def stability_chart(stab, rows, path):
         pts.sort(key=lambda r: r["rtol"])
         ok = [p for p in pts if p["status"] == "ok"]
         line, = b.semilogx([p["rtol"] for p in ok], [p["mean_cfl"] for p in ok], marker="o", label=short(m))
+        lim = [r["cfl_stable"] for r in stab if r["method"] == m]
+        if lim:
+            b.axhline(lim[0], color=line.get_color(), linestyle=":", linewidth=1)
         bad = [p for p in pts if p["status"] != "ok"]
         if bad:
             b.semilogx([p["rtol"] for p in bad], [p["mean_cfl"] for p in bad], "x", color=line.get_color(), markersize=9)
     b.set_xlabel("rtol (adaptive, no CFL cap; x = run failed/blew up/over budget)")
-    b.set_ylabel("mean CFL number of the accepted steps")
+    b.set_yscale("log")
+    b.set_ylabel("mean CFL number of the accepted steps (dotted: fixed-step stability limit)")
     b.set_title("where the error control puts the step without the cap")
     b.grid(True, which="both", alpha=0.3)
     b.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=150)
     plt.close(fig)
+    print(path)
 
 
 def describe_point(r):
@@ -235,6 +242,7 @@ def summary(rows, stab, ref, path):
             out.append(f"| {short(m)} | " + " | ".join(cells) + " |")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
+    print(path)
 
 
 def main():
