@@ -240,6 +240,20 @@ def summary(rows, stab, ref, path):
                 tag = "" if r["status"] == "ok" else f" **{r['status']}**"
                 cells.append(f"{r['mean_cfl']:.3g} ({int(r['rejected'])}){tag}")
             out.append(f"| {short(m)} | " + " | ".join(cells) + " |")
+    for mode in ("uncapped", "capped"):
+        rr = [r for r in rows if r["mode"] == mode]
+        if not rr:
+            continue
+        rtols = sorted({r["rtol"] for r in rr}, reverse=True)
+        out.append(f"\n### Adaptive runs, {mode}: semi-axis time error / total error vs exact (%)\n")
+        out.append("| method | " + " | ".join(f"{t:.0e}" for t in rtols) + " |")
+        out.append("|---|" + "---|" * len(rtols))
+        for m in sorted({r["method"] for r in rr}):
+            cells = []
+            for t in rtols:
+                x = [r for r in rr if r["method"] == m and r["rtol"] == t]
+                cells.append(f"{x[0]['time_error']:.1e} / {100 * x[0]['error']:.2f}" if x else "")
+            out.append(f"| {short(m)} | " + " | ".join(cells) + " |")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
     print(path)
