@@ -12,13 +12,21 @@ StabilityLimit find_stability_limit(const StudyScene& scene, const std::string& 
   StudyLimits limits;
   limits.energy_tolerance = s.energy_tolerance;
   limits.max_rhs_evals = s.max_rhs_evals;
-  for (int k = 1; k <= s.checks; ++k) limits.times.push_back(horizon * k / s.checks);
 
   // Stable: the horizon is reached with finite states and the energy within tolerance.
   // (A trial stopped by the RHS budget is neither: it counts as stable, the budget only
   // bounds the cost of tiny steps.)
   const auto trial = [&](Real cfl, std::string& reason) {
     ++out.trials;
+    // Check times on whole steps (n dt), so that no step is shortened to land on one: the trial
+    // is a pure fixed-step run of ceil(horizon / dt) steps.
+    const Real dt = cfl * scene.cfl_unit();
+    const long steps = static_cast<long>(std::ceil(horizon / dt - 1e-9));
+    limits.times.clear();
+    for (int k = 1; k <= s.checks; ++k) {
+      const long n = (steps * k + s.checks - 1) / s.checks;
+      if (limits.times.empty() || n * dt > limits.times.back()) limits.times.push_back(static_cast<Real>(n) * dt);
+    }
     const StudyResult r = run_study_case(scene, {method, StudyMode::Fixed, 0, cfl}, limits);
     out.cpu_seconds += r.cpu_seconds;
     reason = r.status + (r.failure.empty() ? "" : ": " + r.failure);

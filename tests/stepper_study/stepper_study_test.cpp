@@ -97,6 +97,20 @@ TEST(StepperStudy, CapBoundsTheAdaptiveStep) {
   EXPECT_LT(free.stats.steps, capped.stats.steps);
 }
 
+TEST(StepperStudy, StabilityBisectionBracketsTheBlowUp) {
+  auto scene = small_drop();
+  StabilitySettings st;
+  st.iterations = 4;
+  const StabilityLimit L = find_stability_limit(*scene, "leapfrog", st);
+  ASSERT_GT(L.cfl_stable, 0);
+  ASSERT_TRUE(std::isfinite(L.cfl_unstable));
+  // Bracket from doubling/halving (ratio 2), then 4 geometric bisections: ratio 2^(1/16).
+  EXPECT_LT(L.cfl_stable, L.cfl_unstable);
+  EXPECT_LE(L.cfl_unstable / L.cfl_stable, std::pow(2.0, 1.0 / 16) * (1 + 1e-12));
+  EXPECT_NE(L.unstable_reason.find("blowup"), std::string::npos) << L.unstable_reason;
+  EXPECT_GE(L.trials, 2 + st.iterations);  // a bracket needs a stable and an unstable trial
+}
+
 // Plain WCSPH (no density diffusion, no cleaning, no viscosity) conserves energy in the
 // semi-discrete sense (measured: DP5 at rtol 1e-10 keeps |E - E0|/E0 < 5e-9 over ten periods),
 // so the energy error of a fixed-step run is the stepper's. Max |E(t) - E0| / E0 per drop

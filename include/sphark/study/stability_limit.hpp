@@ -4,7 +4,8 @@
 // A trial at CFL number C integrates the scene with dt = C * scene.cfl_unit() over a fixed
 // horizon and is UNSTABLE if the stepper fails (e.g. an RHS failure it cannot recover from),
 // the state turns non-finite, or the energy moves by more than energy_tolerance * |E0| at any
-// of `checks` evenly spaced times. The bracket [stable, unstable] is found by doubling/halving
+// of `checks` check times. The trial takes ceil(horizon / dt) whole steps and the check times
+// are whole multiples of dt (no step is shortened to land on a check time). The bracket [stable, unstable] is found by doubling/halving
 // from `start`, then bisected geometrically `iterations` times.
 #include <string>
 #include <vector>
