@@ -51,7 +51,7 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
   if (n >= (std::size_t{1} << 31)) throw std::invalid_argument("NeighbourSearch::build: too many particles");
   radius_ = radius;
   n_ = n;
-  points_.assign(x, x + D * n);
+  points_.assign(x, x + D * n);  // keeps capacity: images are appended below
   image_owner_.resize(n);
   for (std::size_t i = 0; i < n; ++i) image_owner_[i] = static_cast<std::uint32_t>(i);
 
@@ -98,12 +98,14 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
       }
     }
   }
-  tree_ = std::make_unique<Tree>(&points_);
+  if (!tree_) tree_ = std::make_unique<Tree>(&points_);
+  tree_->cloud.pts = &points_;  // this object may have been moved since the last build
   tree_->index.buildIndex();
 
   // Pass 1: count; pass 2: fill. Each particle's list is sorted, so output is deterministic.
   list_.offsets.assign(n + 1, 0);
-  std::vector<std::vector<std::uint32_t>> per_particle(n);
+  std::vector<std::vector<std::uint32_t>>& per_particle = scratch_;
+  if (per_particle.size() < n) per_particle.resize(n);
 #pragma omp parallel
   {
     std::vector<std::pair<std::uint32_t, Real>> hits;
@@ -131,6 +133,7 @@ template <int D>
 void NeighbourSearch<D>::query(const Vec<D>& p, Real radius, std::vector<std::uint32_t>& out) const {
   out.clear();
   if (!tree_) throw std::logic_error("NeighbourSearch::query before build");
+  tree_->cloud.pts = &points_;
   std::vector<std::pair<std::uint32_t, Real>> hits;
   const Vec<D> q = box_ ? box_->wrap(p) : p;
   if (box_ && radius > radius_)

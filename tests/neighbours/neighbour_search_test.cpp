@@ -113,3 +113,16 @@ TEST(NeighbourSearch, QueryFindsPointsOfTheBuiltSet) {
   EXPECT_EQ(got, expect);
   EXPECT_FALSE(expect.empty());
 }
+
+TEST(NeighbourSearch, RebuildAndMoveKeepResultsExact) {
+  auto x = random_points<2>(300, 21);
+  NeighbourSearch<2> ns;
+  ns.build(x.data(), 300, 0.1);
+  NeighbourSearch<2> moved(std::move(ns));
+  for (auto& v : x) v = 0.5 * v + 0.25;  // new positions, same object: rebuild reuses buffers
+  moved.build(x.data(), 300, 0.1);
+  expect_matches_brute_force(moved, x, 0.1);
+  std::vector<std::uint32_t> got;
+  moved.query(Vec<2>(0.5, 0.5), 0.05, got);
+  for (auto j : got) EXPECT_LT((Eigen::Map<const Vec<2>>(x.data() + 2 * j) - Vec<2>(0.5, 0.5)).norm(), 0.05);
+}

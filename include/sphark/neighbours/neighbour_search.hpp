@@ -5,6 +5,7 @@
 // Reuse with a Verlet skin: build(x, n, radius + skin) once, then while
 // max_displacement_since_build(x) < skin / 2 every pair closer than `radius` is still in the
 // lists (each particle moved less than skin/2, so a pair closed in by less than skin).
+// A rebuild reuses every buffer's capacity; only nanoflann's node pool is allocated again.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -67,6 +68,7 @@ class NeighbourSearch {
   std::vector<std::uint32_t> image_owner_;  // original index of each stored point
   std::size_t n_ = 0;
   std::unique_ptr<Tree> tree_;
+  std::vector<std::vector<std::uint32_t>> scratch_;  // per-particle lists, capacity kept across builds
 };
 
 }  // namespace sphark

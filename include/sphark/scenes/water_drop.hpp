@@ -23,11 +23,11 @@ struct WaterDropConfig {
   Real omega = 100.0;        // body force -omega^2 r
   Real rho0 = 1000.0;
   Real sound_speed = 1400.0;
-  Real h_factor = 1.3;       // h = h_factor * spacing  (eq. (5) with eta = h_factor, m = rho0 dx^2)
+  Real h_factor = 2.0;       // h = h_factor * spacing  (eq. (5) with eta = h_factor, m = rho0 dx^2)
   std::string kernel = "wendland_c2";
   Real alpha = 0.0;          // artificial viscosity
   bool diffusion_correction = true;  // Antuono et al. (2010) form of the density diffusion
-  Real delta = 0.1;          // density diffusion
+  Real delta = 0.05;         // density diffusion
   bool cleaning = true;
   Real clean_sigma = 0.5;
   Real cfl = 0.25;
