@@ -77,7 +77,7 @@ def fig2(directory, t_want, out):
     t_seen = None
     for col, (v, label) in enumerate(found):
         t, path = frame_at(os.path.join(directory, v), t_want)
-        if path is None:
+        if path is None or abs(t - t_want) > 1e-6:  # the run did not reach t_want
             continue
         t_seen = t
         x, y, arr = read_vtp(path, [r[0] for r in rows])
@@ -98,6 +98,9 @@ def fig2(directory, t_want, out):
                 ax.set_title(label)
             if col == 0:
                 ax.set_ylabel(title)
+    if t_seen is None:
+        plt.close(fig)
+        return False
     fig.suptitle(f"Orszag–Tang vortex, t = {t_seen:g}")
     fig.tight_layout()
     fig.savefig(out, dpi=130)
