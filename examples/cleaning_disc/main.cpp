@@ -62,12 +62,7 @@ RunResult run(const std::string& name, Cleaning form, Real sigma, const CoreOpti
   std::vector<Real> y(scheme.size(), 0);
   disc_initial_field(scheme, p, y.data());
 
-  StepperOptions so;
-  so.method = core.stepper;
-  if (so.method == "ark-imex" && !scheme.has_stiff_diagonal()) so.method = "ARKODE_DORMAND_PRINCE_7_4_5";
-  so.rtol = core.rtol;
-  so.atol = {core.atol};
-  so.fixed_dt = core.dt;
+  StepperOptions so = stepper_options(core, scheme, "cleaning_disc");
   auto stepper = make_stepper(scheme, so, 0.0, y.data());
 
   CsvWriter csv(core.out / (name + ".csv"), {"t", "mean_h_divB_over_B", "max_h_divB_over_B", "magnetic_energy",

@@ -55,12 +55,7 @@ RunSummary run(const std::string& variant, const CoreOptions& core, int nx, Real
   std::vector<Real> y(scheme.size(), 0);
   orszag_tang_initial_state(scheme, p, y.data());
 
-  StepperOptions so;
-  so.method = core.stepper;
-  if (so.method == "ark-imex" && !scheme.has_stiff_diagonal()) so.method = "ARKODE_DORMAND_PRINCE_7_4_5";
-  so.rtol = core.rtol;
-  so.atol = {core.atol};
-  so.fixed_dt = core.dt;
+  StepperOptions so = stepper_options(core, scheme, "orszag_tang");
   so.cfl_safety = 1.0;
   auto stepper = make_stepper(scheme, so, 0.0, y.data());
 

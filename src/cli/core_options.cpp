@@ -45,6 +45,16 @@ StepperOptions stepper_options(const CoreOptions& o) {
   return s;
 }
 
+StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, std::string_view program) {
+  StepperOptions s = stepper_options(o);
+  if (s.method == "ark-imex" && !system.has_stiff_diagonal()) {
+    s.method = "ARKODE_DORMAND_PRINCE_7_4_5";
+    std::fprintf(stderr, "%.*s: --stepper ark-imex: this run has no stiff part (no psi damping); using %s\n",
+                 static_cast<int>(program.size()), program.data(), s.method.c_str());
+  }
+  return s;
+}
+
 void apply_thread_count(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
 }

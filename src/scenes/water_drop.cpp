@@ -1,5 +1,6 @@
 #include "sphark/scenes/water_drop.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -51,6 +52,17 @@ void require_positive(Real v, const char* what) {
   if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument(std::string(what) + " must be a positive number");
 }
 }  // namespace
+
+std::vector<Real> water_drop_absolute_tolerances(const WaterDrop& drop, Real atol) {
+  const WaterDropConfig& c = drop.config;
+  const Real vscale = std::max(c.amplitude, c.omega) * c.radius;
+  return per_field_tolerance(drop.model->layout(),
+                             {{Field::Position, atol * c.radius},
+                              {Field::Velocity, atol * vscale},
+                              {Field::Density, atol * c.rho0},
+                              {Field::Psi, atol * c.rho0 * c.sound_speed * vscale}},
+                             atol);
+}
 
 std::vector<std::string> wcsph_kernel_names() {
   return {std::string(CubicSpline<2>::name), std::string(QuinticSpline<2>::name), std::string(WendlandC2<2>::name),

@@ -19,14 +19,7 @@ class DropProblem final : public StudyProblem {
   OdeSystem& system() override { return drop_.model->system(); }
   const std::vector<Real>& y0() const override { return drop_.y0; }
   std::vector<Real> absolute_tolerance(Real rtol) const override {
-    const WaterDropConfig& c = drop_.config;
-    const Real vscale = std::max(c.amplitude, c.omega) * c.radius;
-    return per_field_tolerance(drop_.model->layout(),
-                               {{Field::Position, rtol * c.radius},
-                                {Field::Velocity, rtol * vscale},
-                                {Field::Density, rtol * c.rho0},
-                                {Field::Psi, rtol * c.rho0 * c.sound_speed * vscale}},
-                               rtol);
+    return water_drop_absolute_tolerances(drop_, rtol);
   }
   Real energy(Real t, const Real* y) override { return drop_.model->diagnostics(t, y).total_energy; }
 

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "sphark/core/types.hpp"
+#include "sphark/integrate/ode_system.hpp"
 #include "sphark/integrate/stepper_options.hpp"
 
 namespace sphark {
@@ -124,6 +125,10 @@ std::vector<std::string> core_stepper_names();
 
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt.
 StepperOptions stepper_options(const CoreOptions& o);
+// The same for one run of `system`: when --stepper ark-imex meets a run without a stiff part
+// (e.g. no psi damping), says so in one line on stderr and uses ARKODE_DORMAND_PRINCE_7_4_5
+// for that run (a scene that runs several variants keeps going; nothing is switched silently).
+StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, std::string_view program);
 
 // Sets the OpenMP thread count if threads > 0.
 void apply_thread_count(int threads);

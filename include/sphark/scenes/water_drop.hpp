@@ -65,6 +65,11 @@ struct WaterDrop {
 // Builds the drop; throws std::invalid_argument for bad configuration values.
 WaterDrop make_water_drop(const WaterDropConfig& config);
 
+// Per-entry absolute tolerances: `atol` times each field's natural scale (R for positions,
+// V = max(A, omega) R for velocities, rho0 for density, rho0 c_s V for psi, which has units of
+// pressure).
+std::vector<Real> water_drop_absolute_tolerances(const WaterDrop& drop, Real atol);
+
 // Kernels the scene accepts by name.
 std::vector<std::string> wcsph_kernel_names();
 
