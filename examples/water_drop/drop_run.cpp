@@ -1,10 +1,10 @@
 #include "drop_run.hpp"
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <stdexcept>
 
 #include "sphark/integrate/stepper.hpp"
@@ -101,14 +101,28 @@ struct LoopState {
 }  // namespace
 
 std::string scene_text(const WaterDropConfig& c) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "radius=" << c.radius << "\nspacing=" << c.spacing << "\namplitude=" << c.amplitude << "\nomega=" << c.omega
-    << "\nrho0=" << c.rho0 << "\nsound_speed=" << c.sound_speed << "\nh_factor=" << c.h_factor
-    << "\nkernel=" << c.kernel << "\nalpha=" << c.alpha << "\ndiffusion_correction=" << c.diffusion_correction
-    << "\ndelta=" << c.delta << "\ncleaning=" << c.cleaning << "\nclean_sigma=" << c.clean_sigma << "\ncfl=" << c.cfl
-    << "\nexact_initial_pressure=" << c.exact_initial_pressure << '\n';
-  return s.str();
+  std::string s;
+  const auto put = [&s](const char* key, Real v) {  // shortest text that reads back exactly
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    ((s += key) += '=').append(buf, r.ptr) += '\n';
+  };
+  put("radius", c.radius);
+  put("spacing", c.spacing);
+  put("amplitude", c.amplitude);
+  put("omega", c.omega);
+  put("rho0", c.rho0);
+  put("sound_speed", c.sound_speed);
+  put("h_factor", c.h_factor);
+  ((s += "kernel=") += c.kernel) += '\n';
+  put("alpha", c.alpha);
+  put("diffusion_correction", c.diffusion_correction);
+  put("delta", c.delta);
+  put("cleaning", c.cleaning);
+  put("clean_sigma", c.clean_sigma);
+  put("cfl", c.cfl);
+  put("exact_initial_pressure", c.exact_initial_pressure);
+  return s;
 }
 
 DropRunSummary run_water_drop(const DropRunSettings& s) {

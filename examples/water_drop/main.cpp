@@ -126,9 +126,11 @@ int main(int argc, char** argv) {
     c.cleaning = label == "cleaned";
     if (const std::string d = scene_difference(restart->text("scene"), scene_text(c)); !d.empty())
       p.fail("--restart", "scene parameters cannot change on restart: " + d);
-    if (!(restart->t < base.core.t_end * (1 - 1e-12)))
-      p.fail("--t-end", std::to_string(base.core.t_end) + " is not after the checkpoint time " +
-                            std::to_string(restart->t));
+    if (!(restart->t < base.core.t_end * (1 - 1e-12))) {
+      char why[128];
+      std::snprintf(why, sizeof why, "%.9g is not after the checkpoint time %.9g", base.core.t_end, restart->t);
+      p.fail("--t-end", why);
+    }
   }
   apply_thread_count(base.core.threads);
   prepare_output_dir(base.core.out, p.program());

@@ -21,7 +21,10 @@ std::string describe_entries(const StateLayout& layout, const std::vector<std::s
     if (particles.empty()) continue;
     if (!out.empty()) out += "; ";
     out += std::string(field_name(f)) + " of particle" + (particles.size() > 1 ? "s " : " ");
-    for (std::size_t i = 0; i < particles.size() && i < max_named; ++i) out += (i ? ", " : "") + std::to_string(particles[i]);
+    for (std::size_t i = 0; i < particles.size() && i < max_named; ++i) {
+      if (i) out += ", ";
+      out += std::to_string(particles[i]);
+    }
     if (particles.size() > max_named) out += " (+" + std::to_string(particles.size() - max_named) + " more)";
   }
   return out;
