@@ -68,7 +68,8 @@ void ArkodeStepper::configure() {
 
 // Before each advance(): land exactly on t_out (stop time: the returned state is a genuine step,
 // not ARKODE's dense-output interpolant, whose order is below that of high-order tables), and
-// bound adaptive steps by max_dt and cfl_safety * max_stable_dt at the current state.
+// bound adaptive steps by max_dt and (cap_by_stability) cfl_safety * max_stable_dt at the
+// current state.
 void ArkodeStepper::bound_step(Real t_out) {
   realtype t_internal = 0;
   check(api_.get_current_time(mem_, &t_internal), "GetCurrentTime");
@@ -79,8 +80,10 @@ void ArkodeStepper::bound_step(Real t_out) {
     return;
   }
   step_cap_ = opts_.max_dt > 0 ? opts_.max_dt : std::numeric_limits<Real>::infinity();
-  const Real stable = opts_.cfl_safety * system_.max_stable_dt(t_last_, y_last_.data());
-  if (stable > 0 && std::isfinite(stable)) step_cap_ = std::min(step_cap_, stable);
+  if (opts_.cap_by_stability) {
+    const Real stable = opts_.cfl_safety * system_.max_stable_dt(t_last_, y_last_.data());
+    if (stable > 0 && std::isfinite(stable)) step_cap_ = std::min(step_cap_, stable);
+  }
   check(api_.set_max_step(mem_, std::isfinite(step_cap_) ? step_cap_ : 0.0), "SetMaxStep");
 }
 

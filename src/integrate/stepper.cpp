@@ -121,7 +121,8 @@ std::string describe(const StepperOptions& o) {
     if (o.atol.size() > 1) s << "per-entry (" << o.atol.size() << ")";
     else s << (o.atol.empty() ? 1e-9 : o.atol.front());
     if (o.max_dt > 0) s << " max_dt=" << o.max_dt;
-    s << " dt<=" << o.cfl_safety << " x max_stable_dt";
+    if (o.cap_by_stability) s << " dt<=" << o.cfl_safety << " x max_stable_dt";
+    else s << " no stability cap";
   }
   s << ", max_steps=" << o.max_steps;
   return s.str();

@@ -8,9 +8,9 @@
 //
 // Step-size bounds: max_dt when > 0. Adaptive ARKODE runs are also bounded by
 // cfl_safety * system.max_stable_dt(t, y), evaluated at the start of every advance() call (a
-// finite CFL limit is respected per output interval; ARKODE's error control normally keeps
-// the step below it anyway). Fixed-step runs take fixed_dt (the last step of an interval is
-// shortened to land on t_out).
+// finite CFL limit is respected per output interval; StepperOptions::cap_by_stability = false
+// lifts this bound). Fixed-step runs take fixed_dt (the last step of an interval is shortened
+// to land on t_out).
 //
 // Recoverable RHS failures (return > 0): ARKODE 6.4.1 ERKStep/ARKStep turn them into
 // ARK_UNREC_RHSFUNC_ERR for explicit stages, so the ERK/IMEX stepper restarts (xxxStepReset)

@@ -17,8 +17,12 @@ struct StepperOptions {
   Real fixed_dt = 0;
   // Leapfrog without fixed_dt: dt = cfl_safety * system.max_stable_dt(t, y), every step.
   // Adaptive ARKODE runs: the step is bounded by cfl_safety * max_stable_dt evaluated at the
-  // start of every advance() call (see stepper.hpp).
+  // start of every advance() call (see stepper.hpp), unless cap_by_stability is false.
   Real cfl_safety = 1.0;
+  // Adaptive ARKODE runs only: true bounds the step by cfl_safety * max_stable_dt (above);
+  // false leaves the step to the error control alone (max_dt still applies), e.g. to measure
+  // where the error control on its own loses stability. Leapfrog and fixed-step runs ignore it.
+  bool cap_by_stability = true;
   // > 0: upper bound on every step of every method (except a fixed_dt run).
   Real max_dt = 0;
   // > 0: first step of an adaptive ARKODE run (e.g. the last step of a run being restarted);

@@ -1,0 +1,123 @@
+// stepper_study (issue 7): which ARKODE method and tolerance gives a given accuracy for the
+// least work, and where does each one fail? Work-precision matrix + stability limits of the
+// time steppers on one scene. See README.md in this folder.
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <sstream>
+
+#include "sphark/cli/options.hpp"
+#include "sphark/integrate/stepper.hpp"
+#include "sphark/io/visualise.hpp"
+#include "study.hpp"
+
+using namespace sphark;
+
+namespace {
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// Accepts ERK short forms: "DORMAND_PRINCE_7_4_5" for "ARKODE_DORMAND_PRINCE_7_4_5".
+std::vector<std::string> method_list(const OptionParser& p, const std::string& option, const std::string& text,
+                                     bool adaptive_only, bool allow_leapfrog) {
+  std::vector<std::string> out;
+  const auto tables = erk_table_names();
+  for (std::string m : split(text)) {
+    if (std::find(tables.begin(), tables.end(), m) == tables.end() &&
+        std::find(tables.begin(), tables.end(), "ARKODE_" + m) != tables.end())
+      m = "ARKODE_" + m;
+    const bool erk = std::find(tables.begin(), tables.end(), m) != tables.end();
+    if (!erk && m != "ark-imex" && !(allow_leapfrog && m == "leapfrog"))
+      p.fail(option, "unknown method '" + m + "'");
+    if (erk && adaptive_only && !erk_table_has_embedding(m)) p.fail(option, "'" + m + "' has no embedding (no adaptive steps)");
+    out.push_back(m);
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene_name = "drop";
+  std::filesystem::path out;
+  StudySceneOptions so;
+  StudySettings s;
+  std::string adaptive = "HEUN_EULER_2_1_2,BOGACKI_SHAMPINE_4_2_3,ZONNEVELD_5_3_4,DORMAND_PRINCE_7_4_5,VERNER_8_5_6,"
+                         "FEHLBERG_13_7_8,ark-imex";
+  std::string fixed = "BOGACKI_SHAMPINE_4_2_3,DORMAND_PRINCE_7_4_5,ark-imex";
+  std::string stability = "all";
+  std::string modes = "capped,uncapped";
+  std::string what = "all";
+  s.rtols = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
+  s.fixed_cfls = {0.1, 0.2, 0.4, 0.8};
+  s.leapfrog_cfls = {0.025, 0.05, 0.1, 0.2, 0.4};
+  int threads = 1;
+  bool render = true;
+  Real ref_rtol = s.reference.rtol;
+
+  OptionParser p("stepper_study", "work-precision charts and stability limits of the time steppers on one scene");
+  p.add("--scene", &scene_name, "scene", OneOf{study_scene_names()});
+  p.add("--out", &out, "output directory (default out/stepper_study/<scene>)", "DIR");
+  p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles)", NonNegative{});
+  p.add("--t-end", &so.t_end, "end time (0: scene default; drop 0.025, one squeeze and back)", NonNegative{});
+  p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default, 25)", NonNegative{});
+  p.add("--what", &what, "what to run", OneOf{{"all", "matrix", "stability"}});
+  p.add("--methods", &adaptive, "adaptive methods (ERK tables with an embedding, ark-imex), comma-separated");
+  p.add("--modes", &modes, "adaptive modes: capped (dt <= cap-cfl x CFL unit), uncapped, or both", OneOf{{"capped", "uncapped", "capped,uncapped"}});
+  p.add("--rtols", &s.rtols, "relative tolerances of the adaptive runs", Positive{});
+  p.add("--cap-cfl", &s.limits.cap_cfl, "CFL number of the step cap of capped adaptive runs", Positive{});
+  p.add("--fixed-methods", &fixed, "methods run at every --fixed-cfls (ERK tables, ark-imex; 'none')");
+  p.add("--fixed-cfls", &s.fixed_cfls, "CFL numbers of the fixed-step runs", Positive{});
+  p.add("--leapfrog-cfls", &s.leapfrog_cfls, "CFL numbers of the leapfrog runs", Positive{});
+  p.add("--reference-rtol", &ref_rtol, "rtol of the reference run (VERNER_8_5_6) and its check (FEHLBERG_13_7_8)", Positive{});
+  p.add("--max-rhs", &s.limits.max_rhs_evals, "stop a run after this many RHS evaluations", Positive{});
+  p.add("--stability-methods", &stability, "methods of the stability bisection ('all': every ERK table, ark-imex, leapfrog)");
+  p.add("--stability-horizon", &s.stability.horizon, "horizon of a stability trial (0: t_end)", NonNegative{});
+  p.add("--energy-tolerance", &s.stability.energy_tolerance, "blow-up criterion: |E - E0| > tol |E0|", Positive{});
+  p.add("--bisections", &s.stability.iterations, "bisection steps after bracketing", NonNegative{});
+  p.add("--threads", &threads, "OpenMP threads (1: CPU time = work of one core)", Positive{});
+  p.add_flag("--no-render", &render, "do not draw the charts", false);
+  p.parse_or_exit(argc, argv);
+
+  s.adaptive_methods = method_list(p, "--methods", adaptive, true, false);
+  s.fixed_methods = fixed == "none" ? std::vector<std::string>{} : method_list(p, "--fixed-methods", fixed, false, false);
+  if (stability == "all") {
+    s.stability_methods = erk_table_names();
+    s.stability_methods.push_back("ark-imex");
+    s.stability_methods.push_back("leapfrog");
+  } else {
+    s.stability_methods = method_list(p, "--stability-methods", stability, false, true);
+  }
+  for (const std::string& m : split(modes)) s.adaptive_modes.push_back(m == "capped" ? StudyMode::Capped : StudyMode::Uncapped);
+  s.reference.rtol = s.reference_check.rtol = ref_rtol;
+  s.matrix = what != "stability";
+  s.stability_run = what != "matrix";
+  if (out.empty()) out = std::filesystem::path("out/stepper_study") / scene_name;
+  s.out = out;
+
+  std::unique_ptr<StudyScene> scene;
+  try {
+    scene = make_study_scene(scene_name, so);
+  } catch (const std::exception& e) {
+    exit_usage_error(p.program(), "--scene", e.what());
+  }
+  apply_thread_count(threads);
+  prepare_output_dir(s.out, p.program());
+  std::printf("stepper_study: %s; CFL unit h/(c+|v|) = %.4g; output %s\n", scene->description().c_str(), scene->cfl_unit(),
+              s.out.c_str());
+  try {
+    if (s.matrix && !run_work_precision(*scene, s)) return 1;
+    if (s.stability_run) run_stability(*scene, s);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "stepper_study: %s\n", e.what());
+    return 1;
+  }
+  if (render && !run_python("work_precision.py", {"--dir", s.out.string()}, false)) return 1;
+  return 0;
+}

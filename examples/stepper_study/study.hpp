@@ -1,0 +1,35 @@
+#pragma once
+// stepper_study: work-precision matrix and stability limits of the time steppers on a scene.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sphark/study/stability_limit.hpp"
+#include "sphark/study/study_run.hpp"
+#include "sphark/study/study_scene.hpp"
+
+namespace sphark {
+
+struct StudySettings {
+  std::filesystem::path out;
+  std::vector<std::string> adaptive_methods;  // ERK tables with an embedding, ark-imex
+  std::vector<Real> rtols;
+  std::vector<StudyMode> adaptive_modes;      // Capped and/or Uncapped
+  std::vector<std::string> fixed_methods;     // run at every fixed CFL number (leapfrog has its own list)
+  std::vector<Real> fixed_cfls;
+  std::vector<Real> leapfrog_cfls;
+  StudyCase reference{"ARKODE_VERNER_8_5_6", StudyMode::Capped, 1e-10, 0};
+  StudyCase reference_check{"ARKODE_FEHLBERG_13_7_8", StudyMode::Capped, 1e-10, 0};
+  StudyLimits limits;
+  std::vector<std::string> stability_methods;
+  StabilitySettings stability;
+  bool matrix = true, stability_run = true;
+};
+
+// Writes <out>/work_precision.csv (one row per case, appended as runs finish) and
+// <out>/reference.csv (the reference run and its check). Returns false if the reference failed.
+bool run_work_precision(const StudyScene& scene, const StudySettings& s);
+// Writes <out>/stability.csv.
+void run_stability(const StudyScene& scene, const StudySettings& s);
+
+}  // namespace sphark
