@@ -121,3 +121,21 @@ TEST(BadOptions, SecondDerivative1dRejectsWithOneLineAndNoFiles) {
   };
   for (const auto& c : cases) expect_rejected(bin, c, dir, out);
 }
+
+TEST(BadOptions, GhostStaticRejectsWithOneLineAndNoFiles) {
+  const auto bin = example_binary("ghost_static");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  std::ofstream(dir.path() / "a_file") << "x";
+  const std::vector<BadInput> cases = {
+      {{"--particles", "10"}, "--particles: bad value '10'"},
+      {{"--particles", "0"}, "--particles: bad value '0'"},
+      {{"--draws", "inf"}, "--draws: bad value 'inf'"},
+      {{"--seed", "-1"}, "--seed: bad value '-1'"},
+      {{"--only", "fig6"}, "--only: bad value 'fig6'"},
+      {{"--relax-map", "spherical"}, "--relax-map: bad value 'spherical'"},
+      {{"--out", (dir.path() / "a_file" / "sub").string()}, "--out: cannot create"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}
