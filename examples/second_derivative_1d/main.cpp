@@ -1,68 +1,34 @@
 // Reproduces seed 001 (SPH second derivatives near boundaries in 1D): Tables 1-5 as CSV + Markdown,
 // the data and PNGs of Figures 2, 4, 5, a second test function and the cost of each operator.
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "scene.hpp"
+#include "sphark/cli/options.hpp"
 
 using namespace sphark::d1;
 
 namespace {
 
-const char* kUsage =
-    "usage: second_derivative_1d [--out DIR] [--seed S] [--seeds K] [--levels L] [--no-plots] [--no-timing]\n"
-    "  Reproduces seed 001, Tables 1-5 and Figures 2, 4, 5 (CSPM, BIM, ICSPM second derivatives in 1D).\n"
-    "  --out DIR    output folder (default out/second_derivative_1d)\n"
-    "  --seed S     random particle set for Tables 4-5 and Figures 4-5 (default 1)\n"
-    "  --seeds K    also repeat Tables 4-5 over K random sets S..S+K-1: mean and spread of e_N (default 1)\n"
-    "  --levels L   N = 11, 21, ..., 10*2^(L-1)+1 (default 8: up to 1281; 2..10)\n"
-    "  --no-plots   do not call vis/second_derivative_1d.py\n"
-    "  --no-timing  skip the cost measurements (timing.csv)\n";
-
-[[noreturn]] void bad(const std::string& option, const std::string& value, const char* why) {
-  std::fprintf(stderr, "second_derivative_1d: invalid value '%s' for %s: %s\n", value.c_str(), option.c_str(), why);
-  std::exit(2);
-}
-
-long long parse_int(const std::string& option, const char* text, long long lo, long long hi) {
-  if (text == nullptr) bad(option, "", "missing value");
-  char* end = nullptr;
-  errno = 0;
-  const long long v = std::strtoll(text, &end, 10);
-  if (end == text || *end != '\0' || errno != 0) bad(option, text, "not an integer");
-  if (v < lo || v > hi) bad(option, text, ("must be in " + std::to_string(lo) + ".." + std::to_string(hi)).c_str());
-  return v;
-}
-
+// Options: one line naming the option, the bad value and what is allowed, exit code 2, and no
+// file written (the output directory is checked before any work).
 scene::Options parse(int argc, char** argv) {
   scene::Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const char* next = i + 1 < argc ? argv[i + 1] : nullptr;
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    } else if (a == "--out") {
-      if (next == nullptr || std::string(next).empty()) bad(a, "", "missing directory");
-      o.out = next, ++i;
-    } else if (a == "--seed") {
-      o.seed = static_cast<std::uint64_t>(parse_int(a, next, 0, 1LL << 62)), ++i;
-    } else if (a == "--seeds") {
-      o.seeds = static_cast<int>(parse_int(a, next, 1, 10000)), ++i;
-    } else if (a == "--levels") {
-      o.levels = static_cast<int>(parse_int(a, next, 2, 10)), ++i;
-    } else if (a == "--no-plots") {
-      o.plots = false;
-    } else if (a == "--no-timing") {
-      o.timing = false;
-    } else {
-      std::fprintf(stderr, "second_derivative_1d: unknown option '%s' (try --help)\n", a.c_str());
-      std::exit(2);
-    }
-  }
+  long seed = static_cast<long>(o.seed);
+  sphark::OptionParser p("second_derivative_1d",
+                         "Reproduces seed 001, Tables 1-5 and Figures 2, 4, 5 (CSPM, BIM, ICSPM second derivatives in 1D)");
+  p.add("--out", &o.out, "output folder", "DIR");
+  p.add("--seed", &seed, "random particle set for Tables 4-5 and Figures 4-5", sphark::NonNegative{});
+  p.add("--seeds", &o.seeds, "also repeat Tables 4-5 over K random sets S..S+K-1: mean and spread of e_N",
+        sphark::Range{1, 10000});
+  p.add("--levels", &o.levels, "N = 11, 21, ..., 10*2^(L-1)+1 (8: up to 1281)", sphark::Range{2, 10});
+  p.add_flag("--no-plots", &o.plots, "do not call vis/second_derivative_1d.py", false);
+  p.add_flag("--no-timing", &o.timing, "skip the cost measurements (timing.csv)", false);
+  p.parse_or_exit(argc, argv);
+  o.seed = static_cast<std::uint64_t>(seed);
+  sphark::prepare_output_dir(o.out, p.program());
   return o;
 }
 

@@ -3,9 +3,11 @@
 // and summarise the accuracy against the exact ellipse.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/stepper_options.hpp"
+#include "sphark/run/checkpoint.hpp"
 #include "sphark/scenes/water_drop.hpp"
 
 namespace sphark {
@@ -15,11 +17,19 @@ struct DropRunSettings {
   WaterDropConfig scene;
   Real diagnostics_every = 1e-4;
   bool quiet = false;
+  std::string label = "run";        // "cleaned" / "control": stored in checkpoints
+  std::vector<std::string> argv;    // options of this run, stored in checkpoints
+  Real checkpoint_every = 0;        // > 0: <out>/checkpoint.bin every this much time and at the end
+  const Checkpoint* restart = nullptr;  // continue from this checkpoint
+  Real inject_nan_at = 0;           // > 0: testing aid, the RHS turns non-finite from this time on
 };
 
 struct DropRunSummary {
   bool ok = false;
   std::string failure;               // why the stepper gave up, if !ok
+  int stopped_by_signal = 0;         // SIGINT/SIGTERM received: checkpoint written, run stopped
+  std::filesystem::path checkpoint;  // last checkpoint written ("" if none)
+  std::filesystem::path last_frame;  // last VTK frame written
   Real t_reached = 0;
   double wall_seconds = 0;
   StepperStats stats;
@@ -34,11 +44,17 @@ struct DropRunSummary {
   long neighbour_builds = 0;
 };
 
-// Runs to core.t_end. Writes <out>/diagnostics.csv, <out>/drop_*.vtp, <out>/drop.pvd.
+// Runs to core.t_end (from settings.restart if set). Writes <out>/diagnostics.csv,
+// <out>/drop_*.vtp, <out>/drop.pvd (all atomically) and <out>/checkpoint.bin: every
+// checkpoint_every and at the end if checkpoint_every > 0, and always when the stepper fails
+// (the last good state, also written as a VTK frame) or a stop signal arrives.
 DropRunSummary run_water_drop(const DropRunSettings& settings);
 
 // Per-entry absolute tolerances: --atol times each field's natural scale (R, A R, rho0, and
 // rho0 c_h A R for psi, which has units of pressure).
+// The scene parameters as "key=value" lines (a restart must not change them).
+std::string scene_text(const WaterDropConfig& c);
+
 std::vector<Real> drop_absolute_tolerances(const WaterDrop& drop, Real atol);
 
 }  // namespace sphark

@@ -4,11 +4,15 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
+#include <sstream>
 
 #include "drop_charts.hpp"
 #include "drop_run.hpp"
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/stepper.hpp"
+#include "sphark/run/restart.hpp"
+#include "sphark/run/signals.hpp"
 
 using namespace sphark;
 
@@ -29,9 +33,39 @@ void print_summary(const std::string& label, const DropRunSummary& s) {
               100 * s.max_rel_density_error, s.kinetic_energy_end, 100 * s.total_energy_drift, s.neighbour_builds);
   if (!s.ok) std::printf("          reason: %s\n", s.failure.c_str());
 }
+
+// --restart FILE: the checkpoint, loaded before anything is parsed or written (its stored
+// options come first, the ones given now override them). Bad file: one line, exit 2.
+std::optional<Checkpoint> load_restart(int argc, char** argv) {
+  const auto file = find_option_value(argc, argv, "--restart");
+  if (!file) return std::nullopt;
+  if (file->empty()) exit_usage_error("water_drop", "--restart", "missing value (expected a checkpoint FILE)");
+  try {
+    Checkpoint c = load_checkpoint(*file);
+    if (c.program != "water_drop")
+      exit_usage_error("water_drop", "--restart", "'" + *file + "' was written by " + c.program + ", not water_drop");
+    return c;
+  } catch (const std::exception& e) {
+    exit_usage_error("water_drop", "--restart", e.what());
+  }
+}
+
+// The first scene parameter that differs between the checkpoint and this run ("" if none).
+std::string scene_difference(const std::string& stored, const std::string& now) {
+  std::istringstream a(stored), b(now);
+  std::string la, lb;
+  while (std::getline(a, la) && std::getline(b, lb))
+    if (la != lb) return "checkpoint has " + la + ", this run " + lb;
+  return {};
+}
 }  // namespace
 
 int main(int argc, char** argv) {
+  const std::optional<Checkpoint> restart = load_restart(argc, argv);
+  // Options of this run (stored in its checkpoints): a restart's stored ones, then these.
+  std::vector<std::string> args = arguments(argc, argv);
+  if (restart) args = without_option(restart_arguments("water_drop", restart->argv, args), "--restart");
+  else args.insert(args.begin(), "water_drop");
   DropRunSettings base;
   base.core.out = "out/water_drop";
   base.core.t_end = 0.1;
@@ -64,19 +98,49 @@ int main(int argc, char** argv) {
   p.add("--initial-pressure", &initial_pressure, "initial density from the exact pressure, or rho0 everywhere",
         OneOf{{"exact", "zero"}});
   p.add("--diagnostics-every", &base.diagnostics_every, "time between diagnostics rows", Positive{});
-  p.parse_or_exit(argc, argv);
+  p.add("--checkpoint-every", &base.checkpoint_every,
+        "simulated time between checkpoints <out>/<run>/checkpoint.bin (also written at the end); 0 = only on "
+        "failure or SIGINT/SIGTERM",
+        NonNegative{});
+  std::filesystem::path restart_file;
+  p.add("--restart", &restart_file, "continue from a checkpoint (its options apply, the ones given override)", "FILE");
+  p.add("--inject-nan-at", &base.inject_nan_at,
+        "testing aid: the RHS turns non-finite from this time on (0 = never); exercises retry + clean failure",
+        NonNegative{});
+  const std::vector<const char*> parse_argv = as_argv(args);
+  p.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
   sc.exact_initial_pressure = initial_pressure == "exact";
   if (sc.spacing > 0.5 * sc.radius) p.fail("--spacing", "must be at most half the radius");
   if (base.core.output_every > base.core.t_end) p.fail("--output-every", "must not exceed --t-end");
-  apply_thread_count(base.core.threads);
-  prepare_output_dir(base.core.out, p.program());
-
+  if (base.diagnostics_every > base.core.t_end) p.fail("--diagnostics-every", "must not exceed --t-end");
+  if (base.checkpoint_every > base.core.t_end) p.fail("--checkpoint-every", "must not exceed --t-end");
   std::vector<std::pair<std::string, bool>> runs;
   if (cleaning != "off") runs.push_back({"cleaned", true});
   if (cleaning != "on") runs.push_back({"control", false});
+  if (restart) {  // one run: the checkpoint's
+    const std::string label = restart->text("run");
+    if (cleaning != "both" && (cleaning == "on") != (label == "cleaned"))
+      p.fail("--cleaning", cleaning + " contradicts the checkpoint (a " + label + " run)");
+    runs = {{label, label == "cleaned"}};
+    WaterDropConfig c = sc;
+    c.cleaning = label == "cleaned";
+    if (const std::string d = scene_difference(restart->text("scene"), scene_text(c)); !d.empty())
+      p.fail("--restart", "scene parameters cannot change on restart: " + d);
+    if (!(restart->t < base.core.t_end * (1 - 1e-12))) {
+      char why[128];
+      std::snprintf(why, sizeof why, "%.9g is not after the checkpoint time %.9g", base.core.t_end, restart->t);
+      p.fail("--t-end", why);
+    }
+  }
+  apply_thread_count(base.core.threads);
+  prepare_output_dir(base.core.out, p.program());
+  install_stop_handlers();
+  base.argv.assign(args.begin() + 1, args.end());
+  base.restart = restart ? &*restart : nullptr;
   std::vector<std::pair<std::string, DropRunSummary>> results;
   for (const auto& [label, on] : runs) {
     DropRunSettings s = base;
+    s.label = label;
     s.scene.cleaning = on;
     s.core.out = base.core.out / label;
     prepare_output_dir(s.core.out, p.program());
@@ -86,6 +150,18 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
       std::fprintf(stderr, "water_drop: %s run: %s\n", label.c_str(), e.what());
       return 1;
+    }
+    const DropRunSummary& r = results.back().second;
+    if (r.stopped_by_signal) {  // orderly stop: checkpoint written, no further runs or pictures
+      std::fprintf(stderr, "water_drop: %s run stopped by signal %d at t=%.9g; checkpoint %s (continue with --restart %s)\n",
+                   label.c_str(), r.stopped_by_signal, r.t_reached, r.checkpoint.c_str(), r.checkpoint.c_str());
+      return 128 + r.stopped_by_signal;
+    }
+    if (!r.ok) {
+      std::fprintf(stderr, "water_drop: %s run FAILED at t=%.9g: %s\nwater_drop: last good state: %s and %s\n",
+                   label.c_str(), r.t_reached, r.failure.c_str(), r.last_frame.c_str(), r.checkpoint.c_str());
+      print_summary(label, r);
+      return 3;
     }
   }
   std::printf("\nwater drop, %s, rtol %g, atol %g, dt %g, t_end %g\n", base.core.stepper.c_str(), base.core.rtol,

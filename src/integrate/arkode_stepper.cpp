@@ -59,6 +59,7 @@ void ArkodeStepper::configure() {
   }
   check(api_.set_max_num_steps(mem_, opts_.max_steps), "SetMaxNumSteps");
   if (opts_.fixed_dt > 0) check(api_.set_fixed_step(mem_, opts_.fixed_dt), "SetFixedStep");
+  else if (opts_.initial_dt > 0) check(api_.set_init_step(mem_, opts_.initial_dt), "SetInitStep");
   if (system_.num_roots() > 0) {
     check(api_.root_init(mem_, system_.num_roots(), &roots_cb), "RootInit");
     check(api_.set_no_inactive_root_warn(mem_), "SetNoInactiveRootWarn");
@@ -97,6 +98,10 @@ bool ArkodeStepper::recover(int& consecutive) {
   realtype h = 0;
   if (api_.get_current_step(mem_, &h) < 0 || !(std::abs(h) > 0)) return false;
   h = kRecoveryFactor * std::abs(h);
+  if (h < opts_.min_dt) {
+    below_min_dt_ = true;
+    return false;
+  }
   auto y = make_view(y_accepted_.size(), y_accepted_.data(), ctx_.get());
   if (api_.reset(mem_, t_accepted_, y.get()) < 0) return false;
   if (opts_.fixed_dt > 0) {
@@ -141,6 +146,7 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     failure_ = flag_name(flag) + " (" + std::to_string(flag) + ") at t=" +
                at_time(t) + ": " + arkode_message_;
     if (!callback_error_.empty()) failure_ += "; " + callback_error_;
+    if (below_min_dt_) failure_ += "; the reduced step would fall below min_dt=" + at_time(opts_.min_dt);
     if (consecutive > kMaxRecoveries)
       failure_ += "; gave up after " + std::to_string(kMaxRecoveries) + " step reductions";
     y_last_ = y_accepted_;

@@ -90,6 +90,7 @@ class ArkodeStepper : public Stepper {
   std::vector<Real> y_accepted_;  // state after the last accepted internal step
   Real t_accepted_ = 0;
   bool fixed_step_reduced_ = false;
+  bool below_min_dt_ = false;  // the last recover() stopped at StepperOptions::min_dt
   Real step_cap_ = 0;  // max step of an adaptive run during the current advance()
   int last_code_ = 0;         // last non-zero return of a system callback
   std::string callback_error_;

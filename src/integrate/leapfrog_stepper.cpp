@@ -71,12 +71,26 @@ class LeapfrogStepper final : public Stepper {
     return s;
   }
   std::string failure_reason() const override { return failure_; }
+  std::vector<Real> resume_data() const override {  // dy_ then t_lost_
+    if (!started_ || failed_) return {};
+    std::vector<Real> d = dy_;
+    d.push_back(t_lost_);
+    return d;
+  }
   std::vector<int> roots_found() const override { return roots_; }
 
  private:
   void start() {
     started_ = true;
-    if (call("rhs", t_, [&] { return system_.rhs(t_, y_.data(), dy_.data()); }) != 0) fail("initial RHS");
+    if (!opts_.resume_data.empty()) {  // a restart: the derivative the interrupted run would use
+      if (opts_.resume_data.size() != n_ + 1)
+        return fail("resume_data has " + std::to_string(opts_.resume_data.size()) + " values, expected " +
+                    std::to_string(n_ + 1));
+      std::copy(opts_.resume_data.begin(), opts_.resume_data.end() - 1, dy_.begin());
+      t_lost_ = opts_.resume_data.back();
+    } else if (call("rhs", t_, [&] { return system_.rhs(t_, y_.data(), dy_.data()); }) != 0) {
+      fail("initial RHS");
+    }
     if (!g_.empty() && call("roots", t_, [&] { return system_.roots(t_, y_.data(), g_.data()); }) != 0)
       fail("initial root functions");
   }
@@ -112,9 +126,11 @@ class LeapfrogStepper final : public Stepper {
     for (int halvings = 0;; ++halvings) {
       const int code = step(dt);
       if (code == 0) return true;
-      if (code < 0 || halvings == kMaxHalvings) {
-        fail(code < 0 ? "fatal RHS failure" : "recoverable RHS failure persists after " +
-                                                   std::to_string(kMaxHalvings) + " halvings of dt");
+      if (code < 0 || halvings == kMaxHalvings || 0.5 * dt < opts_.min_dt) {
+        fail(code < 0 ? "fatal RHS failure"
+             : halvings == kMaxHalvings
+                 ? "recoverable RHS failure persists after " + std::to_string(kMaxHalvings) + " halvings of dt"
+                 : "recoverable RHS failure; halving dt=" + at_time(dt) + " would fall below min_dt");
         return false;
       }
       dt *= 0.5;

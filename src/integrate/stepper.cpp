@@ -39,6 +39,8 @@ void validate_common(const OdeSystem& system, const StepperOptions& o) {
     if (!(a >= 0)) bad("atol", num(a), "must be >= 0");
   if (!(o.fixed_dt >= 0)) bad("fixed_dt", num(o.fixed_dt), "must be >= 0");
   if (!(o.max_dt >= 0)) bad("max_dt", num(o.max_dt), "must be >= 0");
+  if (!(o.min_dt >= 0)) bad("min_dt", num(o.min_dt), "must be >= 0");
+  if (!(o.initial_dt >= 0)) bad("initial_dt", num(o.initial_dt), "must be >= 0");
   if (!(o.cfl_safety > 0)) bad("cfl_safety", num(o.cfl_safety), "must be > 0");
   if (o.max_steps <= 0) bad("max_steps", std::to_string(o.max_steps), "must be > 0");
 }

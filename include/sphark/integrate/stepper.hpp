@@ -46,6 +46,11 @@ class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
   virtual StepperStats stats() const = 0;
   // After Failed: flag name + message, time, and system.last_error().
   virtual std::string failure_reason() const = 0;
+  // What a bit-exact restart at the current state needs beyond (t, y, last step): the
+  // leapfrog's derivative for the next kick (FSAL: evaluated at the predictor, not at y) and its
+  // time compensation; empty for the ARKODE steppers (they restart from (t, y) and initial_dt).
+  // Pass it back as StepperOptions::resume_data.
+  virtual std::vector<Real> resume_data() const { return {}; }
   // After RootFound: one entry per g_k, +1 / -1 if g_k crossed zero increasing / decreasing.
   virtual std::vector<int> roots_found() const = 0;
 };

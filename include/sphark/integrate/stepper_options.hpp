@@ -25,6 +25,14 @@ struct StepperOptions {
   bool cap_by_stability = true;
   // > 0: upper bound on every step of every method (except a fixed_dt run).
   Real max_dt = 0;
+  // > 0: first step of an adaptive ARKODE run (e.g. the last step of a run being restarted);
+  // 0: ARKODE's own estimate. Ignored by fixed-step runs and the leapfrog.
+  Real initial_dt = 0;
+  // > 0: a step reduction after a recoverable RHS failure that would go below min_dt ends the
+  // run (Failed) instead (otherwise a blow-up at time T can shrink steps towards T endlessly).
+  Real min_dt = 0;
+  // Restart: Stepper::resume_data() of the run being continued (see stepper.hpp); empty = none.
+  std::vector<Real> resume_data;
   // Internal steps allowed per advance() call (ARKODE's default is 500).
   long max_steps = 1000000;
   // ARK IMEX pair of ARKODE 6.4.1: ARK324L2SA (order 3), ARK436L2SA (4), ARK437L2SA (4),

@@ -1,0 +1,57 @@
+#pragma once
+// An OdeSystem wrapper that makes every non-finite right-hand side a recoverable failure (the
+// stepper then retries with a smaller step, see integrate/stepper.hpp) and names the particles
+// concerned; optionally it injects a NaN from a given time on (a testing aid for the blow-up
+// path: retries, then a clean failure with the last good state written).
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sphark/integrate/ode_system.hpp"
+#include "sphark/state/state_layout.hpp"
+
+namespace sphark {
+
+// "<field> of particles 3, 17, 42 (+5 more)" for the state entries `entries` (ascending), or ""
+// when empty. At most `max_named` particles are named.
+std::string describe_entries(const StateLayout& layout, const std::vector<std::size_t>& entries,
+                             std::size_t max_named = 5);
+
+// Entries of y that are non-finite, or whose density is not positive (if the layout has a
+// density), ascending.
+std::vector<std::size_t> nonphysical_entries(const StateLayout& layout, const Real* y);
+
+class GuardedSystem final : public OdeSystem {
+ public:
+  GuardedSystem(OdeSystem& inner, const StateLayout& layout) : inner_(inner), layout_(layout) {}
+
+  // From time t on, rhs() puts a NaN into the velocity derivative of particle 0 (testing aid).
+  void inject_nan_from(Real t) { inject_from_ = t; }
+
+  std::size_t size() const override { return inner_.size(); }
+  int rhs(Real t, const Real* y, Real* ydot) override;
+  bool has_stiff_diagonal() const override { return inner_.has_stiff_diagonal(); }
+  int stiff_diagonal(Real t, const Real* y, Real* c) override;
+  std::size_t position_offset() const override { return inner_.position_offset(); }
+  std::size_t velocity_offset() const override { return inner_.velocity_offset(); }
+  std::size_t position_size() const override { return inner_.position_size(); }
+  Real max_stable_dt(Real t, const Real* y) override { return inner_.max_stable_dt(t, y); }
+  int num_roots() const override { return inner_.num_roots(); }
+  int roots(Real t, const Real* y, Real* g) override { return inner_.roots(t, y, g); }
+  std::string last_error() const override { return own_error_ ? error_ : inner_.last_error(); }
+
+  long guarded_failures() const { return failures_; }
+
+ private:
+  int check(Real t, const Real* out, std::size_t n, const char* what);
+
+  OdeSystem& inner_;
+  const StateLayout& layout_;
+  Real inject_from_ = std::numeric_limits<Real>::infinity();
+  bool own_error_ = false;
+  std::string error_;
+  long failures_ = 0;
+};
+
+}  // namespace sphark

@@ -1,0 +1,141 @@
+// Every class of bad option on the examples: exit code 2, ONE line on stderr naming the option
+// (and the value), and nothing written (the output directory is not even created).
+#include <gtest/gtest.h>
+
+#include "run_example.hpp"
+#include "sphark/run/checkpoint.hpp"
+#include "temp_dir.hpp"
+
+using namespace sphark;
+using namespace sphark::test;
+
+namespace {
+struct BadInput {
+  std::vector<std::string> args;
+  std::string expect;  // substring of the one error line
+};
+
+std::string joined(const std::vector<std::string>& args) {
+  std::string s;
+  for (const auto& a : args) (s += a) += ' ';
+  return s;
+}
+
+void expect_rejected(const std::filesystem::path& bin, const BadInput& b, const TempDir& dir,
+                     const std::filesystem::path& out) {
+  SCOPED_TRACE(joined(b.args));
+  std::vector<std::string> args = b.args;
+  if (std::find(args.begin(), args.end(), "--out") == args.end()) args.insert(args.begin(), {"--out", out.string()});
+  const Finished f = run(bin, args, dir.path());
+  EXPECT_EQ(f.exit_code, 2);
+  EXPECT_NE(f.err.find(b.expect), std::string::npos) << f.err;
+  EXPECT_EQ(std::count(f.err.begin(), f.err.end(), '\n'), 1) << f.err;
+  EXPECT_TRUE(f.out.empty()) << f.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  std::printf("[exit %d] %-60s -> %s", f.exit_code, joined(b.args).c_str(), f.err.c_str());
+}
+}  // namespace
+
+TEST(BadOptions, WaterDropRejectsEveryClassWithOneLineAndNoFiles) {
+  const auto bin = example_binary("water_drop");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built (SPHARK_BUILD_EXAMPLES=OFF)";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  std::ofstream(dir.path() / "a_file") << "x";
+  std::ofstream(dir.path() / "garbage.bin") << "not a checkpoint";
+  const std::vector<BadInput> cases = {
+      {{"--stepper", "rk99"}, "--stepper: bad value 'rk99'"},                // unknown name
+      {{"--kernel", "gauss"}, "--kernel: bad value 'gauss'"},                // unknown variant
+      {{"--cleaning", "maybe"}, "--cleaning: bad value 'maybe'"},
+      {{"--initial-pressure", "hydrostatic"}, "--initial-pressure: bad value 'hydrostatic'"},
+      {{"--frobnicate", "1"}, "--frobnicate"},                               // unknown option
+      {{"--spacing", "0"}, "--spacing: bad value '0'"},                      // non-positive size
+      {{"--spacing", "-0.1"}, "--spacing: bad value '-0.1'"},
+      {{"--radius", "-1"}, "--radius: bad value '-1'"},
+      {{"--spacing", "0.9"}, "--spacing: must be at most half the radius"},  // too few particles
+      {{"--t-end", "0"}, "--t-end: bad value '0'"},                          // non-positive time
+      {{"--t-end", "-1"}, "--t-end: bad value '-1'"},
+      {{"--dt", "-1e-5"}, "--dt: bad value '-1e-5'"},
+      {{"--diagnostics-every", "0"}, "--diagnostics-every: bad value '0'"},
+      {{"--checkpoint-every", "-1"}, "--checkpoint-every: bad value '-1'"},
+      {{"--output-every", "1", "--t-end", "0.5"}, "--output-every: must not exceed --t-end"},
+      {{"--rtol", "0"}, "--rtol: bad value '0'"},                            // non-positive tolerance
+      {{"--atol", "-1e-6"}, "--atol: bad value '-1e-6'"},
+      {{"--rtol", "nan"}, "--rtol: bad value 'nan'"},                        // NaN / inf
+      {{"--t-end", "inf"}, "--t-end: bad value 'inf'"},
+      {{"--sound-speed", "NaN"}, "--sound-speed: bad value 'NaN'"},
+      {{"--h-factor", "1e400"}, "--h-factor: bad value '1e400'"},
+      {{"--threads", "-2"}, "--threads: bad value '-2'"},
+      {{"--threads", "2.5"}, "--threads: bad value '2.5'"},
+      {{"--t-end", "abc"}, "--t-end: bad value 'abc'"},                      // not a number
+      {{"--t-end"}, "--t-end"},                                              // missing value
+      {{"--restart", (dir.path() / "absent.bin").string()}, "--restart: checkpoint"},  // bad checkpoint
+      {{"--restart", (dir.path() / "garbage.bin").string()}, "not a sphark checkpoint"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+  // output directory that cannot be created / written: nothing appears
+  for (const auto& bad_out : {(dir.path() / "a_file" / "sub").string(), std::string("/proc/sphark_out")}) {
+    const Finished f = run(bin, {"--out", bad_out, "--t-end", "0.001", "--output-every", "0.0005", "--spacing", "0.2"}, dir.path());
+    EXPECT_EQ(f.exit_code, 2) << bad_out;
+    EXPECT_NE(f.err.find("--out: cannot create"), std::string::npos) << f.err;
+    EXPECT_EQ(std::count(f.err.begin(), f.err.end(), '\n'), 1) << f.err;
+    std::printf("[exit %d] --out %s -> %s", f.exit_code, bad_out.c_str(), f.err.c_str());
+  }
+  EXPECT_EQ(dir.entries(), (std::set<std::string>{"a_file", "garbage.bin", "stdout.txt", "stderr.txt"}));
+}
+
+TEST(BadOptions, WaterDropRestartMustMatchTheCheckpoint) {
+  const auto bin = example_binary("water_drop");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto ok = run(bin, {"--out", (dir.path() / "first").string(), "--spacing", "0.2", "--t-end", "0.0004",
+                            "--cleaning", "on", "--no-render", "--checkpoint-every", "0.0002",
+                            "--output-every", "0.0002"},
+                      dir.path());
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const std::string ckpt = (dir.path() / "first" / "cleaned" / "checkpoint.bin").string();
+  const auto out = dir.path() / "second";
+  const std::vector<BadInput> cases = {
+      {{"--restart", ckpt, "--spacing", "0.25"}, "--restart: scene parameters cannot change on restart: checkpoint has spacing=0.2, this run spacing=0.25"},
+      {{"--restart", ckpt, "--delta", "0.1"}, "checkpoint has delta=0.05"},
+      {{"--restart", ckpt, "--t-end", "0.0003"}, "--t-end: 0.0003 is not after the checkpoint time 0.0004"},
+      {{"--restart", ckpt, "--cleaning", "off"}, "--cleaning: off contradicts the checkpoint (a cleaned run)"},
+      {{"--restart", ckpt, "--rtol", "-1"}, "--rtol: bad value '-1'"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}
+
+TEST(BadOptions, SecondDerivative1dRejectsWithOneLineAndNoFiles) {
+  const auto bin = example_binary("second_derivative_1d");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  std::ofstream(dir.path() / "a_file") << "x";
+  const std::vector<BadInput> cases = {
+      {{"--levels", "0"}, "--levels: bad value '0'"},
+      {{"--levels", "11"}, "--levels: bad value '11'"},
+      {{"--seeds", "nan"}, "--seeds: bad value 'nan'"},
+      {{"--seed", "-3"}, "--seed: bad value '-3'"},
+      {{"--colour", "red"}, "--colour"},
+      {{"--out", (dir.path() / "a_file" / "sub").string()}, "--out: cannot create"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}
+
+TEST(BadOptions, GhostStaticRejectsWithOneLineAndNoFiles) {
+  const auto bin = example_binary("ghost_static");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  std::ofstream(dir.path() / "a_file") << "x";
+  const std::vector<BadInput> cases = {
+      {{"--particles", "10"}, "--particles: bad value '10'"},
+      {{"--particles", "0"}, "--particles: bad value '0'"},
+      {{"--draws", "inf"}, "--draws: bad value 'inf'"},
+      {{"--seed", "-1"}, "--seed: bad value '-1'"},
+      {{"--only", "fig6"}, "--only: bad value 'fig6'"},
+      {{"--relax-map", "spherical"}, "--relax-map: bad value 'spherical'"},
+      {{"--out", (dir.path() / "a_file" / "sub").string()}, "--out: cannot create"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}

@@ -1,0 +1,130 @@
+// Checkpoint files: bit-exact round trip, atomic write, and one clear error for every kind of
+// bad file (missing, not a checkpoint, other version, truncated, corrupt, other layout).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "sphark/io/csv_writer.hpp"
+#include "sphark/run/checkpoint.hpp"
+#include "temp_dir.hpp"
+
+using namespace sphark;
+using sphark::test::TempDir;
+
+namespace {
+StateLayout layout3() {
+  StateLayout L(3);
+  L.add(Field::Position, 2).add(Field::Velocity, 2).add(Field::Density, 1);
+  return L;
+}
+
+Checkpoint sample() {
+  const StateLayout L = layout3();
+  Checkpoint c;
+  c.program = "water_drop";
+  c.argv = {"--t-end", "0.1", "--out", "dir with space"};
+  c.particles = L.particles();
+  c.fields = describe_layout(L);
+  c.t = 0.1 + 1e-17;
+  c.last_dt = 3.0e-7 / 7.0;
+  c.set_scalar("sample", 42);
+  c.set_scalar("tiny", std::numeric_limits<Real>::denorm_min());
+  c.set_text("run", "cleaned");
+  c.set_text("csv", std::string("t,x\n1,2\n") + '\0' + "binary");
+  for (std::size_t k = 0; k < L.size(); ++k) c.y.push_back(std::sqrt(2.0) * static_cast<Real>(k) - 1.0 / 3.0);
+  c.y[1] = -0.0;
+  c.y[2] = std::numeric_limits<Real>::max();
+  c.stepper_data = {1.0 / 3.0, std::numeric_limits<Real>::quiet_NaN()};
+  return c;
+}
+
+std::string what_of_load(const std::filesystem::path& p) {
+  try {
+    load_checkpoint(p);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+void put(const std::filesystem::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
+}  // namespace
+
+TEST(Checkpoint, RoundTripIsBitExact) {
+  TempDir dir;
+  const Checkpoint c = sample();
+  save_checkpoint(dir.path() / "c.bin", c);
+  EXPECT_EQ(dir.entries(), std::set<std::string>{"c.bin"});  // no temporary left behind
+  const Checkpoint r = load_checkpoint(dir.path() / "c.bin");
+  EXPECT_EQ(r.program, c.program);
+  EXPECT_EQ(r.argv, c.argv);
+  EXPECT_EQ(r.particles, c.particles);
+  EXPECT_EQ(r.fields, c.fields);
+  EXPECT_EQ(r.texts, c.texts);
+  ASSERT_EQ(r.y.size(), c.y.size());
+  ASSERT_EQ(r.stepper_data.size(), c.stepper_data.size());
+  const auto same_bits = [](Real a, Real b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  EXPECT_TRUE(same_bits(r.t, c.t));
+  EXPECT_TRUE(same_bits(r.last_dt, c.last_dt));
+  EXPECT_TRUE(same_bits(r.scalar("tiny"), c.scalar("tiny")));
+  EXPECT_EQ(r.scalar("sample"), 42);
+  for (std::size_t k = 0; k < c.y.size(); ++k) EXPECT_TRUE(same_bits(r.y[k], c.y[k])) << k;
+  for (std::size_t k = 0; k < c.stepper_data.size(); ++k) EXPECT_TRUE(same_bits(r.stepper_data[k], c.stepper_data[k]));
+  EXPECT_FALSE(layout_mismatch(r, layout3()).has_value());
+}
+
+TEST(Checkpoint, MissingNamesAreErrors) {
+  const Checkpoint c = sample();
+  EXPECT_THROW(c.scalar("nope"), std::runtime_error);
+  EXPECT_THROW(c.text("nope"), std::runtime_error);
+}
+
+TEST(Checkpoint, BadFilesGiveOneClearError) {
+  TempDir dir;
+  const std::string good = encode_checkpoint(sample());
+  const auto p = dir.path() / "x.bin";
+  EXPECT_NE(what_of_load(dir.path() / "absent.bin").find("no such file"), std::string::npos);
+  put(p, "t,x\n1,2\n");
+  EXPECT_NE(what_of_load(p).find("not a sphark checkpoint"), std::string::npos);
+  put(p, "");
+  EXPECT_NE(what_of_load(p).find("not a sphark checkpoint"), std::string::npos);
+  std::string other = good;
+  other[8] = 99;  // version field
+  put(p, other);
+  EXPECT_NE(what_of_load(p).find("unsupported checkpoint version 99"), std::string::npos);
+  // every truncation is detected (a killed writer cannot produce one, a copy can)
+  for (std::size_t len : {std::size_t{12}, std::size_t{20}, good.size() / 2, good.size() - 1}) {
+    put(p, good.substr(0, len));
+    EXPECT_NE(what_of_load(p), "(loaded)") << len;
+  }
+  // every single flipped byte after the header is detected by the checksum
+  for (std::size_t k = 16; k < good.size(); k += 7) {
+    std::string bad = good;
+    bad[k] = static_cast<char>(bad[k] ^ 0x5a);
+    put(p, bad);
+    EXPECT_NE(what_of_load(p).find(p.string()), std::string::npos) << k;
+    EXPECT_NE(what_of_load(p), "(loaded)") << k;
+  }
+}
+
+TEST(Checkpoint, LayoutMismatchIsNamed) {
+  const Checkpoint c = sample();
+  StateLayout more(4);
+  more.add(Field::Position, 2).add(Field::Velocity, 2).add(Field::Density, 1);
+  const auto why = layout_mismatch(c, more);
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("3 particles"), std::string::npos) << *why;
+  EXPECT_NE(why->find("4 particles"), std::string::npos) << *why;
+  StateLayout psi(3);
+  psi.add(Field::Position, 2).add(Field::Velocity, 2).add(Field::Density, 1).add(Field::Psi, 1);
+  EXPECT_TRUE(layout_mismatch(c, psi).has_value());
+}
+
+TEST(Checkpoint, AtomicWriteKeepsThePreviousFileWhenTheDirectoryIsGone) {
+  TempDir dir;
+  EXPECT_THROW(save_checkpoint(dir.path() / "missing" / "c.bin", sample()), std::runtime_error);
+  EXPECT_TRUE(dir.entries().empty());
+}
