@@ -16,17 +16,6 @@
 
 namespace sphark {
 
-std::vector<Real> drop_absolute_tolerances(const WaterDrop& drop, Real atol) {
-  const WaterDropConfig& c = drop.config;
-  const Real vscale = c.amplitude * c.radius > 0 ? c.amplitude * c.radius : c.omega * c.radius;
-  return per_field_tolerance(drop.model->layout(),
-                             {{Field::Position, atol * c.radius},
-                              {Field::Velocity, atol * vscale},
-                              {Field::Density, atol * c.rho0},
-                              {Field::Psi, atol * c.rho0 * c.sound_speed * vscale}},
-                             atol);
-}
-
 namespace {
 // Point arrays of one frame; the vectors must outlive the write() call.
 struct FrameBuffers {
@@ -62,7 +51,7 @@ StepperOptions stepper_options(const DropRunSettings& s, const WaterDrop& drop) 
   StepperOptions o;
   o.method = s.core.stepper;
   o.rtol = s.core.rtol;
-  o.atol = drop_absolute_tolerances(drop, s.core.atol);
+  o.atol = water_drop_absolute_tolerances(drop, s.core.atol);
   o.fixed_dt = s.core.dt;
   return o;
 }

@@ -50,11 +50,7 @@ struct DropRunSummary {
 // (the last good state, also written as a VTK frame) or a stop signal arrives.
 DropRunSummary run_water_drop(const DropRunSettings& settings);
 
-// Per-entry absolute tolerances: --atol times each field's natural scale (R, A R, rho0, and
-// rho0 c_h A R for psi, which has units of pressure).
 // The scene parameters as "key=value" lines (a restart must not change them).
 std::string scene_text(const WaterDropConfig& c);
-
-std::vector<Real> drop_absolute_tolerances(const WaterDrop& drop, Real atol);
 
 }  // namespace sphark
