@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "sphark/io/csv_writer.hpp"
-#include "temp_dir.hpp"
+#include "../support/temp_dir.hpp"
 
 namespace sphark {
 namespace {

@@ -15,7 +15,7 @@
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/vtk_series.hpp"
 #include "sphark/io/vtp_reader.hpp"
-#include "temp_dir.hpp"
+#include "../support/temp_dir.hpp"
 
 namespace sphark {
 namespace {

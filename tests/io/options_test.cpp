@@ -9,7 +9,7 @@
 
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/stepper.hpp"
-#include "temp_dir.hpp"
+#include "../support/temp_dir.hpp"
 
 namespace sphark {
 namespace {

@@ -5,7 +5,7 @@
 #include "sphark/io/state_frame.hpp"
 #include "sphark/io/vtk_series.hpp"
 #include "sphark/io/vtp_reader.hpp"
-#include "temp_dir.hpp"
+#include "../support/temp_dir.hpp"
 
 namespace sphark {
 namespace {

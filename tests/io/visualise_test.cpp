@@ -9,7 +9,7 @@
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
 #include "sphark/io/vtk_series.hpp"
-#include "temp_dir.hpp"
+#include "../support/temp_dir.hpp"
 
 namespace sphark {
 namespace {

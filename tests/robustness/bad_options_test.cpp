@@ -4,7 +4,7 @@
 
 #include "run_example.hpp"
 #include "sphark/run/checkpoint.hpp"
-#include "temp_dir.hpp"
+#include "../support/temp_dir.hpp"
 
 using namespace sphark;
 using namespace sphark::test;

@@ -9,7 +9,7 @@
 
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/run/checkpoint.hpp"
-#include "temp_dir.hpp"
+#include "../support/temp_dir.hpp"
 
 using namespace sphark;
 using sphark::test::TempDir;

@@ -13,7 +13,7 @@ class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "sphark_io_" + std::string(info->test_suite_name()) + "_" + info->name() +
+    std::string name = "sphark_test_" + std::string(info->test_suite_name()) + "_" + info->name() +
                        "_" + std::to_string(::getpid());
     for (char& c : name) {
       if (c == '/') c = '_';  // parameterised tests: "Dims/VtpRoundTrip", "PositionsAnd.../1"
