@@ -23,6 +23,8 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
         "simulated time between output frames, 0 = first and last only", NonNegative{});
   p.add("--threads", &o.threads, "OpenMP threads, 0 = OpenMP default", NonNegative{});
   p.add_flag("--no-render", &o.render, "do not render pictures at the end", false);
+  p.add_flag("--profile", &o.profile,
+             "print the wall-time split (neighbours, density/h, forces, stepper, output)");
 }
 
 void add_core_options(OptionParser& p, CoreOptions& o) {

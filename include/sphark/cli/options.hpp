@@ -111,10 +111,11 @@ struct CoreOptions {
   Real output_every = 0;              // simulated time between frames; 0 = first and last only
   int threads = 0;                    // OpenMP threads; 0 = OpenMP default
   bool render = true;                 // render PNGs at the end (--no-render turns off)
+  bool profile = false;               // --profile: print the wall-time split (core/profile.hpp)
 };
 
 // Registers --out, --t-end, --stepper, --rtol, --atol, --dt, --output-every, --threads,
-// --no-render with the current values of `o` as defaults. `steppers` is the list of valid
+// --no-render, --profile with the current values of `o` as defaults. `steppers` is the list of valid
 // --stepper names (it lives in integrate/); o.stepper must be one of them.
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers);
 // The same with core_stepper_names().
