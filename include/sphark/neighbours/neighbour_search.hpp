@@ -1,14 +1,18 @@
 #pragma once
-// Fixed-radius neighbour search over a nanoflann kd-tree, with periodic images and compact
-// (CSR) lists. nanoflann works with SQUARED radii and distances: that is handled here only.
+// Fixed-radius neighbour search on a uniform cell grid (cell side >= radius; a particle's
+// neighbours lie in its own and the 3^D surrounding cells, wrapped across periodic faces), with
+// compact (CSR) lists. Periodic pairs are found by the minimum-image separation (the box must
+// be at least 2 radii long along periodic axes, so that image is unique).
 //
 // Reuse with a Verlet skin: build(x, n, radius + skin) once, then while
 // max_displacement_since_build(x) < skin / 2 every pair closer than `radius` is still in the
 // lists (each particle moved less than skin/2, so a pair closed in by less than skin).
-// A rebuild reuses every buffer's capacity; only nanoflann's node pool is allocated again.
+// A rebuild reuses every buffer's capacity: once the buffers have grown to the largest lists
+// seen, a rebuild allocates nothing (allocations() counts the builds that had to grow one).
+// The build is OpenMP-parallel over particles; the lists do not depend on the thread count.
 #include <cstddef>
 #include <cstdint>
-#include <memory>
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -59,16 +63,24 @@ class NeighbourSearch {
   // Largest |x_i - x_i(at build)| (minimum image), for the Verlet-skin validity check.
   Real max_displacement_since_build(const Real* x) const;
 
+  // Builds so far that had to enlarge a buffer (the others allocated nothing).
+  long allocations() const { return allocations_; }
+
  private:
-  struct Tree;
+  void bin(std::size_t n, Real radius);  // the cell grid of points_
+
   std::optional<PeriodicBox<D>> box_;
   Real radius_ = 0;
   NeighbourList list_;
-  std::vector<Real> points_;                // built points followed by periodic images (D each)
-  std::vector<std::uint32_t> image_owner_;  // original index of each stored point
+  std::vector<Real> points_;  // the built points (D each), wrapped into the box along periodic axes
   std::size_t n_ = 0;
-  std::unique_ptr<Tree> tree_;
-  std::vector<std::vector<std::uint32_t>> scratch_;  // per-particle lists, capacity kept across builds
+  // Cell grid: cells_[k] per axis, side side_[k] from origin_; particles of cell c are
+  // cell_particles_[cell_start_[c] .. cell_start_[c+1]), ascending.
+  std::array<std::size_t, D> cells_{};
+  Vec<D> origin_ = Vec<D>::Zero(), side_ = Vec<D>::Ones();
+  std::vector<std::uint32_t> cell_of_, cell_start_, cell_particles_;
+  std::vector<std::vector<std::uint32_t>> thread_lists_;  // per-thread rows, capacity kept
+  long allocations_ = 0;
 };
 
 }  // namespace sphark

@@ -77,6 +77,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   if (cand_.size() < stride * static_cast<std::size_t>(threads)) cand_.resize(stride * threads);
   const NeighbourList& L = ns_.list();
   const Real* m = m_.data();
+  const MinimumImage<D> image(ns_.box());
   const Real r_list2 = (K::support * h_list) * (K::support * h_list);
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
   std::size_t not_converged = 0, outside = 0;
@@ -92,7 +93,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       std::size_t nc = 0;
       for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
         const std::size_t j = L.indices[k];
-        const Real r2 = ns_.separation(x, i, j).squaredNorm();
+        const Real r2 = image(x + D * i, x + D * j).squaredNorm();
         if (r2 >= r_list2) continue;
         r2c[nc] = r2;
         rc[nc] = std::sqrt(r2);

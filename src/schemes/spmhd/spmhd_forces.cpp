@@ -13,30 +13,6 @@
 
 namespace sphark {
 
-namespace {
-// x_a - x_b reduced to the nearest periodic image, with 1/L precomputed (1/L = 0 on open axes).
-template <int D>
-struct MinimumImage {
-  Vec<D> L = Vec<D>::Zero(), inv_L = Vec<D>::Zero();
-  explicit MinimumImage(const std::optional<PeriodicBox<D>>& box) {
-    if (!box) return;
-    for (int k = 0; k < D; ++k)
-      if (box->periodic[k]) {
-        L[k] = box->hi[k] - box->lo[k];
-        inv_L[k] = 1.0 / L[k];
-      }
-  }
-  Vec<D> operator()(const Real* xa, const Real* xb) const {
-    Vec<D> d;
-    for (int k = 0; k < D; ++k) {
-      d[k] = xa[k] - xb[k];
-      d[k] -= L[k] * round_to_nearest(d[k] * inv_L[k]);
-    }
-    return d;
-  }
-};
-}  // namespace
-
 template <int D, class K>
 void SpmhdScheme<D, K>::pair_loop_arrays(const Real* y) {
   const Real* psi = opt_.cleaning != Cleaning::None ? y + layout_.offset(Field::Psi) : nullptr;
