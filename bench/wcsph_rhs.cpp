@@ -1,5 +1,6 @@
 // WCSPH (+ velocity cleaning) right-hand side on the water-drop lattice: ns per particle per
-// RHS call and pair interactions per second. Run: build/bin/bench_wcsph_rhs
+// RHS call and pair interactions per second, N = 10^3 .. 10^6 (2D). Single-thread rows report
+// CPU time, 2-thread rows wall time (UseRealTime). Run: build/bin/bench_wcsph_rhs
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -28,12 +29,19 @@ static void BM_WcsphRhs(benchmark::State& state) {
       benchmark::Counter(n * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["pairs_per_s"] = benchmark::Counter(n * pairs_per_particle, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["particles"] = n;
+  state.counters["threads"] = static_cast<double>(state.range(2));
 }
 BENCHMARK(BM_WcsphRhs)
     ->ArgNames({"n", "clean", "threads"})
-    ->Args({2000, 1, 1})
-    ->Args({2000, 0, 1})
-    ->Args({20000, 1, 1})
-    ->Args({20000, 1, 2})
-    ->Unit(benchmark::kMicrosecond);
+    ->Args({1000, 1, 1})
+    ->Args({10000, 0, 1})
+    ->Args({10000, 1, 1})
+    ->Args({100000, 1, 1})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WcsphRhs)->ArgNames({"n", "clean", "threads"})->Args({1000000, 1, 1})->Iterations(3)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WcsphRhs)->ArgNames({"n", "clean", "threads"})->Args({100000, 1, 2})->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WcsphRhs)->ArgNames({"n", "clean", "threads"})->Args({1000000, 1, 2})->Iterations(3)->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
