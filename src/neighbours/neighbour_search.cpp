@@ -163,7 +163,9 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
     }
   }
   for (std::size_t i = 0; i < n; ++i) list_.offsets[i + 1] += list_.offsets[i];
-  list_.indices.resize(list_.offsets[n]);
+  const std::size_t pairs = list_.offsets[n];
+  if (pairs > list_.indices.capacity()) list_.indices.reserve(pairs + pairs / 8);  // headroom for later builds
+  list_.indices.resize(pairs);
 #pragma omp parallel for schedule(static, 1)
   for (int t = 0; t < team; ++t)
     std::copy(rows[t].begin(), rows[t].end(), list_.indices.begin() + list_.offsets[n * t / team]);

@@ -43,7 +43,9 @@ void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
     std::fill(h_.begin(), h_.end(), opt_.eta * std::pow(volume / static_cast<Real>(n_), 1.0 / D));
   }
   Real h_est = *std::max_element(h_.begin(), h_.end());
+  h_guess_.assign(h_.begin(), h_.end());  // every attempt starts from the same guesses
   for (int attempt = 0; attempt < 8; ++attempt) {
+    if (attempt > 0) std::copy(h_guess_.begin(), h_guess_.end(), h_.begin());
     Real cap = 0;
     {
       ScopedPhase timer(Phase::Neighbours);
@@ -80,9 +82,9 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   const MinimumImage<D> image(ns_.box());
   const Real r_list2 = (K::support * h_list) * (K::support * h_list);
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
-  std::size_t not_converged = 0, outside = 0;
+  std::size_t not_converged = 0, outside = 0, iterations = 0;
   Real h_max = 0;
-#pragma omp parallel reduction(+ : not_converged, outside) reduction(max : h_max)
+#pragma omp parallel reduction(+ : not_converged, outside, iterations) reduction(max : h_max)
   {
     Real* r2c = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
     Real* rc = r2c + max_list_;
@@ -117,6 +119,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       bool converged = false;
       Real r = 0, dr = 0;
       for (int it = 0; it < 100 && !converged; ++it) {
+        ++iterations;
         density_at(hh, r, dr);
         const Real rho_h = m_eta / std::pow(hh, D);  // seed 000, eq. (5): rho(h) = m (eta / h)^D
         const Real f = r - rho_h, df = dr + D * rho_h / hh;
@@ -127,7 +130,13 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         hh = h_new;
       }
       if (!converged) ++not_converged;
-      if (hh >= h_list * (1 - 1e-12)) ++outside;
+      // Root beyond what the lists serve? The iteration cannot leave [0, h_list]: near h_list it
+      // converges onto h_list itself (to the tolerance) when the root lies beyond. f increases
+      // with h, so the root is beyond h_list exactly when f(h_list) < 0.
+      if (hh > h_list * (1 - 1e-6)) {
+        density_at(h_list, r, dr);
+        if (r < m_eta / std::pow(h_list, D)) ++outside;
+      }
       density_at(hh, r, dr);
       h_[i] = hh;
       rho_[i] = r;
@@ -135,7 +144,8 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       h_max = std::max(h_max, hh);
     }
   }
-  return {not_converged, outside, h_max};
+  h_iterations_ += static_cast<double>(iterations);
+  return {not_converged, outside, iterations, h_max};
 }
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \

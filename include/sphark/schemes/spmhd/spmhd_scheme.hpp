@@ -50,11 +50,15 @@ class SpmhdScheme final : public OdeSystem {
   long rhs_evaluations() const { return rhs_calls_; }
   // Number of neighbour-list builds so far (Verlet reuse: far fewer than RHS evaluations).
   long neighbour_builds() const { return builds_; }
+  // Makes the next RHS build its neighbour lists afresh (tests, benchmarks of the rebuild).
+  void drop_neighbour_lists() { built_ = false; }
   // The current neighbour lists (pairs within K::support * h (1 + skin) at the last build).
   const NeighbourSearch<D>& neighbours() const { return ns_; }
   // Pairs a-b (ordered, a != b) with |x_a - x_b| < K::support * max(h_a, h_b) at the last RHS:
   // the pair interactions the force loop evaluated.
   std::size_t interacting_pairs() const { return interacting_pairs_; }
+  // Newton (or bisection) steps of the h solve so far, summed over particles.
+  double h_iterations_total() const { return h_iterations_; }
   // Sum of interacting_pairs() over all RHS evaluations so far.
   double pair_interactions_total() const { return pairs_total_; }
 
@@ -77,7 +81,7 @@ class SpmhdScheme final : public OdeSystem {
   void ensure_neighbours_and_density(const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
   void build_neighbours(const Real* x, Real radius);
   struct DensityStats {
-    std::size_t not_converged = 0, outside_list = 0;
+    std::size_t not_converged = 0, outside_list = 0, iterations = 0;
     Real h_max = 0;
   };
   DensityStats solve_density(const Real* x, Real h_list);
@@ -97,10 +101,11 @@ class SpmhdScheme final : public OdeSystem {
   // Pair-loop arrays (SoA): 1/h, 1/h^(D+2) (kernel gradient scale), o = 1/(Omega rho^2),
   // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
   std::vector<Real> hinv_, fscale_, o_, oM_, oB_, opsi_;
+  std::vector<Real> h_guess_;       // h at the start of the density solve
   std::vector<Real> cand_;          // per-thread candidate (r^2, r, m) of the density solve
   std::size_t max_list_ = 0;        // longest neighbour list of the current build
   std::size_t interacting_pairs_ = 0;
-  double pairs_total_ = 0;
+  double pairs_total_ = 0, h_iterations_ = 0;
   Real ch_ = 0;
   long rhs_calls_ = 0;
   long builds_ = 0;
