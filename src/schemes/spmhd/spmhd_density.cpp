@@ -2,9 +2,9 @@
 // (seed 000, eqs. (4)-(5); Omega as in sphark/operators/density_summation.hpp).
 //
 // Speed: each particle's Newton iteration needs the sums at several trial h. The candidate
-// neighbours (r^2, r, m_b) are gathered ONCE per particle into a per-thread buffer, and every
-// Newton step sums over that buffer (same neighbours, same order, same kernel calls as
-// density_sum(): the result is bit-identical to iterating over the lists).
+// neighbours (r, m_b) are gathered ONCE per particle into a per-thread buffer, and every Newton
+// step sums over that buffer with the unit-h kernel shape (one 1/h per step, no filter: the
+// shape vanishes beyond the support). Against sphark::solve_density: round-off differences.
 #include <omp.h>
 
 #include <algorithm>
@@ -75,19 +75,19 @@ void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
 template <int D, class K>
 typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x, Real h_list) {
   const int threads = omp_get_max_threads();
-  const std::size_t stride = 3 * max_list_;
+  const std::size_t stride = 2 * max_list_;
   if (cand_.size() < stride * static_cast<std::size_t>(threads)) cand_.resize(stride * threads);
   const NeighbourList& L = ns_.list();
   const Real* m = m_.data();
   const MinimumImage<D> image(ns_.box());
   const Real r_list2 = (K::support * h_list) * (K::support * h_list);
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
+  const Real w0 = K::w(0, 1.0);  // sigma f(0)
   std::size_t not_converged = 0, outside = 0, iterations = 0;
   Real h_max = 0;
 #pragma omp parallel reduction(+ : not_converged, outside, iterations) reduction(max : h_max)
   {
-    Real* r2c = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
-    Real* rc = r2c + max_list_;
+    Real* rc = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
     Real* mc = rc + max_list_;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n_; ++i) {
@@ -97,27 +97,33 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         const std::size_t j = L.indices[k];
         const Real r2 = image(x + D * i, x + D * j).squaredNorm();
         if (r2 >= r_list2) continue;
-        r2c[nc] = r2;
         rc[nc] = std::sqrt(r2);
         mc[nc] = m[j];
         ++nc;
       }
-      // rho(h) and drho/dh at smoothing length hh, self term first (seed 000, eq. (4)).
+      // rho(h) and drho/dh at smoothing length hh, self term first (seed 000, eq. (4)), from the
+      // unit-h shape: W = w1(q) / h^D and dW/dh = -(D W + r dW/dr) / h = -(D w1 + q^2 f1) / h^(D+1),
+      // with w1 = K::w(q, 1), f1 = K::f_over_r(q, 1), q = r / h. Beyond the support w1 = f1 = 0.
       auto density_at = [&](Real hh, Real& rho, Real& drho_dh) {
-        rho = m[i] * K::w(0, hh);
-        drho_dh = m[i] * kernel_dw_dh<D, K>(0, hh);
-        const Real r_max2 = (K::support * hh) * (K::support * hh);
+        const Real hinv = 1.0 / hh;
+        Real s0 = m[i] * w0, s1 = D * m[i] * w0;
         for (std::size_t c = 0; c < nc; ++c) {
-          if (r2c[c] >= r_max2) continue;
-          rho += mc[c] * K::w(rc[c], hh);
-          drho_dh += mc[c] * kernel_dw_dh<D, K>(rc[c], hh);
+          const Real q = rc[c] * hinv, w1 = K::w(q, 1.0), f1 = K::f_over_r(q, 1.0);
+          s0 += mc[c] * w1;
+          s1 += mc[c] * (D * w1 + q * q * f1);
         }
+        Real hd = 1;
+        for (int k = 0; k < D; ++k) hd *= hinv;
+        rho = s0 * hd;
+        drho_dh = -s1 * hd * hinv;
       };
       const Real m_eta = m[i] * eta_d;
       Real hh = std::min(h_[i], h_list);
       Real lo = 0, hi = h_list;  // bracket: f < 0 below the root, f > 0 above (f increasing)
       bool converged = false;
       Real r = 0, dr = 0;
+      // Newton-Raphson with a bisection fallback, to |h_new - h| < tol * h; rho and Omega are
+      // then evaluated at the returned h_new (quadratic convergence: (5) holds to round-off).
       for (int it = 0; it < 100 && !converged; ++it) {
         ++iterations;
         density_at(hh, r, dr);
@@ -130,6 +136,11 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         hh = h_new;
       }
       if (!converged) ++not_converged;
+      density_at(hh, r, dr);
+      h_[i] = hh;
+      rho_[i] = r;
+      omega_[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)
+      h_max = std::max(h_max, hh);
       // Root beyond what the lists serve? The iteration cannot leave [0, h_list]: near h_list it
       // converges onto h_list itself (to the tolerance) when the root lies beyond. f increases
       // with h, so the root is beyond h_list exactly when f(h_list) < 0.
@@ -137,11 +148,6 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         density_at(h_list, r, dr);
         if (r < m_eta / std::pow(h_list, D)) ++outside;
       }
-      density_at(hh, r, dr);
-      h_[i] = hh;
-      rho_[i] = r;
-      omega_[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)
-      h_max = std::max(h_max, hh);
     }
   }
   h_iterations_ += static_cast<double>(iterations);
