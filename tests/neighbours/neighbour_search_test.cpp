@@ -1,6 +1,8 @@
 // Neighbour lists against brute force (open and periodic boxes, 1-3D), and Verlet-skin reuse.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <random>
 
 #include "sphark/neighbours/neighbour_search.hpp"
@@ -125,4 +127,38 @@ TEST(NeighbourSearch, RebuildAndMoveKeepResultsExact) {
   std::vector<std::uint32_t> got;
   moved.query(Vec<2>(0.5, 0.5), 0.05, got);
   for (auto j : got) EXPECT_LT((Eigen::Map<const Vec<2>>(x.data() + 2 * j) - Vec<2>(0.5, 0.5)).norm(), 0.05);
+}
+
+TEST(NeighbourSearch, ListsIndependentOfThreadCount) {
+  const auto x = random_points<3>(2000, 11);
+  PeriodicBox<3> b;
+  b.periodic = {true, true, false};
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  NeighbourSearch<3> one(b);
+  one.build(x.data(), 2000, 0.12);
+  omp_set_num_threads(2);
+  NeighbourSearch<3> two(b);
+  two.build(x.data(), 2000, 0.12);
+  omp_set_num_threads(saved);
+  EXPECT_EQ(one.list().offsets, two.list().offsets);
+  EXPECT_EQ(one.list().indices, two.list().indices);
+  expect_matches_brute_force(two, x, 0.12);
+}
+
+TEST(NeighbourSearch, RebuildWithoutMorePairsAllocatesNothing) {
+  auto x = random_points<2>(1000, 13);
+  PeriodicBox<2> b;
+  b.periodic = {true, true};
+  NeighbourSearch<2> ns(b);
+  ns.build(x.data(), 1000, 0.06);
+  EXPECT_EQ(ns.allocations(), 1);
+  const std::size_t pairs = ns.list().pairs();
+  for (int k = 1; k <= 4; ++k) {
+    for (std::size_t i = 0; i < x.size(); i += 2) x[i] += 0.1;  // a periodic translation: the same pairs
+    ns.build(x.data(), 1000, 0.06);
+    EXPECT_EQ(ns.list().pairs(), pairs);
+  }
+  EXPECT_EQ(ns.allocations(), 1);
+  expect_matches_brute_force(ns, x, 0.06);
 }
