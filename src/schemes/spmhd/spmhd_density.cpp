@@ -14,6 +14,7 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+#include "sphark/schemes/spmhd/unit_kernel.hpp"
 
 namespace sphark {
 
@@ -103,14 +104,16 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       }
       // rho(h) and drho/dh at smoothing length hh, self term first (seed 000, eq. (4)), from the
       // unit-h shape: W = w1(q) / h^D and dW/dh = -(D W + r dW/dr) / h = -(D w1 + q^2 f1) / h^(D+1),
-      // with w1 = K::w(q, 1), f1 = K::f_over_r(q, 1), q = r / h. Beyond the support w1 = f1 = 0.
+      // with w1 = K::w(q, 1), f1 = K::f_over_r(q, 1), q = r / h (unit_kernel.hpp). Beyond the
+      // support w1 = f1 = 0.
       auto density_at = [&](Real hh, Real& rho, Real& drho_dh) {
         const Real hinv = 1.0 / hh;
         Real s0 = m[i] * w0, s1 = D * m[i] * w0;
         for (std::size_t c = 0; c < nc; ++c) {
-          const Real q = rc[c] * hinv, w1 = K::w(q, 1.0), f1 = K::f_over_r(q, 1.0);
+          Real w1, q2f1;
+          UnitKernel<K>::w_and_q2f(rc[c] * hinv, w1, q2f1);
           s0 += mc[c] * w1;
-          s1 += mc[c] * (D * w1 + q * q * f1);
+          s1 += mc[c] * (D * w1 + q2f1);
         }
         Real hd = 1;
         for (int k = 0; k < D; ++k) hd *= hinv;

@@ -10,6 +10,7 @@
 
 #include "sphark/core/profile.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+#include "sphark/schemes/spmhd/unit_kernel.hpp"
 
 namespace sphark {
 
@@ -81,8 +82,9 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
       const Real reach = K::support * std::max(ha, hb);
       if (r2 >= reach * reach || r2 == 0) continue;
       ++pairs;
-      const Real r = std::sqrt(r2);
-      const Real Fa = fsa * K::f_over_r(r * hia, 1.0), Fb = fscale[b] * K::f_over_r(r * hinv[b], 1.0);
+      const Real r = std::sqrt(r2), rinv = 1.0 / r;
+      const Real Fa = fsa * UnitKernel<K>::f_over_r(r * hia, ha * rinv);
+      const Real Fb = fscale[b] * UnitKernel<K>::f_over_r(r * hinv[b], hb * rinv);
       const Vec<D> ga = Fa * dx, gb = Fb * dx;  // grad_a W_ab(h_a), grad_a W_ab(h_b)
       const Real mb = m[b];
       const Vec3 Bb = mag(b), Bab = Ba - Bb;
@@ -109,7 +111,6 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
       }
 
       // Dissipation with the mean kernel gradient gbar = (g_a + g_b)/2 (antisymmetric in a, b).
-      const Real rinv = 1.0 / r;
       const Vec<D> rhat = rinv * dx;
       const Real rhat_g = 0.5 * (Fa + Fb) * r;  // rhat . gbar < 0
       const Real rho_ab = 0.5 * (rhoa + rho[b]), rho_ab_inv = 1.0 / rho_ab;
