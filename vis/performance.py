@@ -85,7 +85,7 @@ def main():
     ax.set_ylabel("CPU ns per particle per call (1 thread)")
     ax.set_title("sphark: cost per particle vs N")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="center right")
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     fig.tight_layout()
     fig.savefig(a.out, dpi=150)
