@@ -5,13 +5,17 @@
 // Each timed call sees new positions (the state alternates between y and y + dt v with
 // dt = 0.05 h, a typical leapfrog step), as in a run: the h solve runs every call, from the
 // previous h (about 3 Newton steps, as in the Orszag-Tang run), on Verlet lists
-// that stay valid (rebuilds are timed by bench_neighbours). Single-thread rows report CPU time;
+// that stay valid (rebuilds are timed by bench_neighbours). The shuffled row starts from the
+// particles in random order: the scheme's cell-ordered slots make it cost the same. Single-thread rows report CPU time;
 // the 2-thread rows report wall time (UseRealTime), for the thread-scaling figure.
 //   build/bin/bench_spmhd_rhs --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 
 #include "sphark/schemes/spmhd/spmhd_setup.hpp"
 
@@ -53,13 +57,26 @@ void BM_SpmhdRhs2D(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   const int nx = static_cast<int>(std::lround(std::sqrt(state.range(0) * std::sqrt(3.0) / 2)));
   const int ny = hexagonal_rows(nx);
-  const ParticleSet2D p = hexagonal_lattice_unit_box(nx, ny, kOrszagTangRho);
+  ParticleSet2D p = hexagonal_lattice_unit_box(nx, ny, kOrszagTangRho);
+  if (state.range(2) != 0) {  // particles in random order (as after a flow has mixed them)
+    std::vector<std::size_t> perm(p.size());
+    std::iota(perm.begin(), perm.end(), 0);
+    std::shuffle(perm.begin(), perm.end(), std::mt19937_64(3));
+    ParticleSet2D q = p;
+    for (std::size_t i = 0; i < perm.size(); ++i) {
+      q.x[2 * i] = p.x[2 * perm[i]];
+      q.x[2 * i + 1] = p.x[2 * perm[i] + 1];
+      q.m[i] = p.m[perm[i]];
+    }
+    p = q;
+  }
   SpmhdOptions o = options();
   o.h_initial = o.eta * std::sqrt(1.0 / (static_cast<Real>(nx) * ny));
   SpmhdScheme<2> scheme(p.m, o, unit_periodic_box());
   std::vector<Real> y(scheme.size(), 0);
   orszag_tang_initial_state(scheme, p, y.data());
   time_rhs<2>(state, scheme, y, o.h_initial);
+  state.counters["shuffled"] = static_cast<double>(state.range(2));
 }
 
 // 3D: cubic lattice in the periodic unit cube, the Orszag-Tang fields in the x-y plane plus a
@@ -93,11 +110,13 @@ void BM_SpmhdRhs3D(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads"})->Args({1000, 1})->Args({10000, 1})->Args({100000, 1})
+BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads", "shuffled"})->Args({1000, 1, 0})->Args({10000, 1, 0})
+    ->Args({100000, 1, 0})->Args({100000, 1, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads", "shuffled"})->Args({1000000, 1, 0})->Iterations(4)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads"})->Args({1000000, 1})->Iterations(4)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads"})->Args({100000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads"})->Args({1000000, 2})->Iterations(4)->UseRealTime()
+BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads", "shuffled"})->Args({100000, 2, 0})->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SpmhdRhs2D)->ArgNames({"n", "threads", "shuffled"})->Args({1000000, 2, 0})->Iterations(4)->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpmhdRhs3D)->ArgNames({"n", "threads"})->Args({27000, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpmhdRhs3D)->ArgNames({"n", "threads"})->Args({27000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);

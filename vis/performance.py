@@ -31,8 +31,8 @@ LABELS = {
 
 def family(row):
     name = row["name"].split("/")[0]
-    if name == "BM_WcsphRhs" and "/clean:0/" in row["name"]:
-        return None  # the no-cleaning WCSPH row is a single point: table only
+    if (name == "BM_WcsphRhs" and "/clean:0/" in row["name"]) or "/shuffled:1" in row["name"]:
+        return None  # single points (no-cleaning WCSPH, shuffled SPMHD): table only
     return name
 
 
@@ -95,7 +95,8 @@ def main():
         print("| benchmark | N | threads | ns / particle | pairs / particle | pairs / s |")
         print("|---|---:|---:|---:|---:|---:|")
         for r in rows:
-            print(f"| {r['name'].split('/')[0]}{' (no cleaning)' if '/clean:0/' in r['name'] else ''} "
+            note = " (no cleaning)" if "/clean:0/" in r["name"] else " (shuffled order)" if "/shuffled:1" in r["name"] else ""
+            print(f"| {r['name'].split('/')[0]}{note} "
                   f"| {int(r['particles'])} | {int(r.get('threads', 1))} | {r['ns_per_particle']:.0f} "
                   f"| {r.get('pairs_per_particle', float('nan')):.1f} | {r.get('pairs_per_s', float('nan')):.3g} |")
 

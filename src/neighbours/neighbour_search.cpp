@@ -75,7 +75,7 @@ void NeighbourSearch<D>::bin(std::size_t n, Real radius) {
 }
 
 template <int D>
-void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
+void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key) {
   if (!(radius > 0)) throw std::invalid_argument("NeighbourSearch::build: radius must be positive");
   if (n >= (std::size_t{1} << 31)) throw std::invalid_argument("NeighbourSearch::build: too many particles");
   if (box_) {
@@ -158,7 +158,11 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
         }
         if (k == D) break;
       }
-      std::sort(out.begin() + row_start, out.end());  // ascending: deterministic summation order
+      // ascending: a deterministic summation order
+      if (key)
+        std::sort(out.begin() + row_start, out.end(), [key](std::uint32_t p, std::uint32_t q) { return key[p] < key[q]; });
+      else
+        std::sort(out.begin() + row_start, out.end());
       list_.offsets[i + 1] = out.size() - row_start;
     }
   }
@@ -174,6 +178,35 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
                                cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
   for (const auto& t : thread_lists_) capacity_after += t.capacity();
   if (capacity_after != capacity_before) ++allocations_;
+}
+
+template <int D>
+void NeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order) {
+  const std::size_t n = n_;
+  if (order.size() != n) throw std::invalid_argument("NeighbourSearch::renumber: order must have one entry per particle");
+  inverse_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) inverse_[order[i]] = static_cast<std::uint32_t>(i);
+  swap_points_.resize(D * n);
+  swap_offsets_.resize(n + 1);
+  swap_u32_.resize(std::max(list_.indices.size(), n));
+  swap_offsets_[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) swap_offsets_[i + 1] = swap_offsets_[i] + list_.count(order[i]);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t o = order[i];
+    for (int k = 0; k < D; ++k) swap_points_[D * i + k] = points_[D * o + k];
+    std::size_t w = swap_offsets_[i];
+    for (std::size_t r = list_.begin(o); r < list_.end(o); ++r) swap_u32_[w++] = inverse_[list_.indices[r]];
+  }
+  std::copy(swap_points_.begin(), swap_points_.end(), points_.begin());
+  std::copy(swap_offsets_.begin(), swap_offsets_.end(), list_.offsets.begin());
+  std::copy(swap_u32_.begin(), swap_u32_.end(), list_.indices.begin());
+  // cells: the particles of a cell, renamed (and sorted again, as bin() leaves them)
+  for (auto& c : cell_particles_) c = inverse_[c];
+  for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c)
+    std::sort(cell_particles_.begin() + cell_start_[c], cell_particles_.begin() + cell_start_[c + 1]);
+  for (std::size_t i = 0; i < n; ++i) swap_u32_[i] = cell_of_[order[i]];
+  std::copy(swap_u32_.begin(), swap_u32_.begin() + n, cell_of_.begin());
 }
 
 template <int D>

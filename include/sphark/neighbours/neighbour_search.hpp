@@ -44,7 +44,16 @@ class NeighbourSearch {
   // Lists every j != i with |x_i - x_j| < radius. x holds D values per particle (column-major
   // D x n, as vector_field<D> gives). Throws std::invalid_argument if a periodic box is shorter
   // than 2 * radius along a periodic axis (the minimum image would be ambiguous).
-  void build(const Real* x, std::size_t n, Real radius);
+  // key (optional, n entries): each row is sorted ascending by key[j] instead of j (a caller
+  // that stores particles in its own order keeps a fixed summation order this way).
+  void build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key = nullptr);
+
+  // Renumbers the built particles: new index i is old index order[i] (a permutation of 0..n-1).
+  // The lists, the stored positions and the cells follow; every row keeps its order.
+  void renumber(const std::vector<std::uint32_t>& order);
+
+  // The built particles in cell order (a spatial order: neighbours in space are near in it).
+  const std::vector<std::uint32_t>& cell_order() const { return cell_particles_; }
 
   // Indices of the built particles within `radius` of point p (radius <= the build radius is
   // not required; images are searched when the box is periodic). Sorted ascending, unique.
@@ -80,6 +89,9 @@ class NeighbourSearch {
   Vec<D> origin_ = Vec<D>::Zero(), side_ = Vec<D>::Ones();
   std::vector<std::uint32_t> cell_of_, cell_start_, cell_particles_;
   std::vector<std::vector<std::uint32_t>> thread_lists_;  // per-thread rows, capacity kept
+  std::vector<std::uint32_t> inverse_, swap_u32_;         // renumber() scratch
+  std::vector<std::size_t> swap_offsets_;
+  std::vector<Real> swap_points_;
   long allocations_ = 0;
 };
 

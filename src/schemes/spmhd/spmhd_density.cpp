@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/operators/density_summation.hpp"
@@ -20,13 +21,35 @@ namespace sphark {
 
 template <int D, class K>
 void SpmhdScheme<D, K>::build_neighbours(const Real* x, Real radius) {
-  ns_.build(x, n_, radius);
+  ns_.build(x, n_, radius, perm_.data());  // rows sorted by particle index
   built_ = true;
   ++builds_;
+  sort_slots_by_cell();
   const NeighbourList& L = ns_.list();
   std::size_t longest = 0;
   for (std::size_t i = 0; i < n_; ++i) longest = std::max(longest, L.count(i));
   max_list_ = longest;
+}
+
+// Renumbers the slots in the cell order of the fresh lists; the per-slot data that outlives this
+// RHS (positions, h and its guesses, masses, the slot -> particle map) follows.
+template <int D, class K>
+void SpmhdScheme<D, K>::sort_slots_by_cell() {
+  order_ = ns_.cell_order();
+  ns_.renumber(order_);
+  auto permute = [&](auto& v, int comps) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    if (v.size() != comps * n_) return;
+    permute_scratch_.resize(v.size());
+    for (std::size_t i = 0; i < n_; ++i)
+      for (int k = 0; k < comps; ++k) permute_scratch_[comps * i + k] = static_cast<Real>(v[comps * order_[i] + k]);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<T>(permute_scratch_[i]);
+  };
+  permute(x_, D);
+  permute(h_, 1);
+  permute(h_guess_, 1);
+  permute(ms_, 1);
+  permute(perm_, 1);  // slot indices < 2^31: exact through a double
 }
 
 // Verlet lists built with radius R = support * h_est * (1 + skin). A pair closer than
@@ -79,7 +102,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   const std::size_t stride = 2 * max_list_;
   if (cand_.size() < stride * static_cast<std::size_t>(threads)) cand_.resize(stride * threads);
   const NeighbourList& L = ns_.list();
-  const Real* m = m_.data();
+  const Real* m = ms_.data();
   const MinimumImage<D> image(ns_.box());
   const Real r_list2 = (K::support * h_list) * (K::support * h_list);
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
@@ -159,6 +182,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
   template void SpmhdScheme<D, K>::build_neighbours(const Real*, Real);                         \
+  template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real*);                  \
   template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*, Real);
 SPHARK_SPMHD_DENSITY(2, CubicSpline<2>)

@@ -15,8 +15,8 @@
 namespace sphark {
 
 template <int D, class K>
-void SpmhdScheme<D, K>::pair_loop_arrays(const Real* y) {
-  const Real* psi = opt_.cleaning != Cleaning::None ? y + layout_.offset(Field::Psi) : nullptr;
+void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
+  const Real* psi = opt_.cleaning != Cleaning::None ? psi_.data() : nullptr;
 #pragma omp parallel for schedule(static)
   for (std::size_t a = 0; a < n_; ++a) {
     const Real hi = 1.0 / h_[a];
@@ -45,9 +45,11 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   const bool induction = opt_.field == FieldRepresentation::MagneticField;
   const Cleaning cleaning = opt_.cleaning;
   const Real* x = x_.data();
-  const Real* v = evolve ? y + layout_.offset(Field::Velocity) : nullptr;
-  const Real* u = evolve ? y + layout_.offset(Field::InternalEnergy) : nullptr;
-  const Real* psi = cleaning != Cleaning::None ? y + layout_.offset(Field::Psi) : nullptr;
+  // inputs in slot order (gathered by prepare()); outputs go to particle perm_[a]
+  const Real* v = evolve ? v_.data() : nullptr;
+  const Real* u = evolve ? u_.data() : nullptr;
+  const Real* psi = cleaning != Cleaning::None ? psi_.data() : nullptr;
+  const std::uint32_t* perm = perm_.data();
   Real* dx_dt = evolve ? ydot + layout_.offset(Field::Position) : nullptr;
   Real* dv_dt = evolve ? ydot + layout_.offset(Field::Velocity) : nullptr;
   Real* du_dt = evolve ? ydot + layout_.offset(Field::InternalEnergy) : nullptr;
@@ -59,7 +61,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   const MinimumImage<D> image(ns_.box());
   const Real alpha_visc = opt_.alpha_visc, beta_visc = opt_.beta_visc, alpha_u = opt_.alpha_u;
   const Real alpha_b = induction ? opt_.alpha_b : 0.0;
-  const Real *m = m_.data(), *h = h_.data(), *hinv = hinv_.data(), *fscale = fscale_.data(), *rho = rho_.data();
+  const Real *m = ms_.data(), *h = h_.data(), *hinv = hinv_.data(), *fscale = fscale_.data(), *rho = rho_.data();
   const Real *o = o_.data(), *oM = oM_.data(), *oB = oB_.data(), *opsi = opsi_.data(), *Bs = B_.data();
   const Real *cf = cf_.data(), *P = P_.data();
   auto mag = [&](std::size_t i) { return Eigen::Map<const Vec3>(Bs + 3 * i); };
@@ -148,19 +150,19 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
       Real dpsi = -ch2 * divB;                                               // eq. (19)
       if (opt_.sigma > 0) dpsi -= opt_.sigma * ch_ / ha * psi[a];           // -psi / tau
       if (evolve && cleaning == Cleaning::Constrained) dpsi += 0.5 * psi[a] * inv_orho * divv;  // eq. (25)
-      dpsi_dt[a] = dpsi;
+      dpsi_dt[perm[a]] = dpsi;
     }
     if (evolve) {
       divv *= -inv_orho;
       divv_[a] = divv;
       if (opt_.subtract_monopole_force) acc -= Ba.template head<D>() * monopole;  // eq. (9)
-      Eigen::Map<Vec<D>>(dx_dt + D * a) = va;
-      Eigen::Map<Vec<D>>(dv_dt + D * a) = acc;
-      du_dt[a] = P[a] * oa * dudt_p + dudt_diss;
+      Eigen::Map<Vec<D>>(dx_dt + D * perm[a]) = va;
+      Eigen::Map<Vec<D>>(dv_dt + D * perm[a]) = acc;
+      du_dt[perm[a]] = P[a] * oa * dudt_p + dudt_diss;
       if (induction) dB += -inv_orho * dB_ind + rhoa * dB_res;
-      else dalpha_dt[a] = 0;  // alpha advected with the flow: d alpha / dt = 0
+      else dalpha_dt[perm[a]] = 0;  // alpha advected with the flow: d alpha / dt = 0
     }
-    if (induction) Eigen::Map<Vec3>(dB_dt + 3 * a) = dB;
+    if (induction) Eigen::Map<Vec3>(dB_dt + 3 * perm[a]) = dB;
   }
   interacting_pairs_ = pairs;
   pairs_total_ += static_cast<double>(pairs);
