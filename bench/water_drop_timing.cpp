@@ -4,13 +4,13 @@
 // work: the --profile line "stepper" = Advance - Rhs.
 //   build/bin/bench_water_drop_timing --t-end 0.02 --threads 1 --profile
 #include <omp.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 
+#include "cpu_time.hpp"
 #include "sphark/cli/options.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
@@ -18,13 +18,7 @@
 
 using namespace sphark;
 
-namespace {
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-}  // namespace
+using bench::cpu_seconds;
 
 int main(int argc, char** argv) {
   CoreOptions core;

@@ -67,7 +67,7 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7.2, 4.8))
+    fig, ax = plt.subplots(figsize=(7.2, 5.4))
     series = {}
     for r in rows:
         fam = family(r)
@@ -85,7 +85,7 @@ def main():
     ax.set_ylabel("CPU ns per particle per call (1 thread)")
     ax.set_title("sphark: cost per particle vs N")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="center right")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     fig.tight_layout()
     fig.savefig(a.out, dpi=150)

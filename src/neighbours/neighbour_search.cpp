@@ -75,7 +75,8 @@ void NeighbourSearch<D>::bin(std::size_t n, Real radius) {
 }
 
 template <int D>
-void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key) {
+void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key,
+                               const Real* radii) {
   if (!(radius > 0)) throw std::invalid_argument("NeighbourSearch::build: radius must be positive");
   if (n >= (std::size_t{1} << 31)) throw std::invalid_argument("NeighbourSearch::build: too many particles");
   if (box_) {
@@ -86,7 +87,7 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
                                     std::to_string(k) + " is shorter than twice the search radius " +
                                     std::to_string(radius));
   }
-  std::size_t capacity_before = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() +
+  std::size_t capacity_before = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
                                 cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
   for (const auto& t : thread_lists_) capacity_before += t.capacity();
 
@@ -105,6 +106,11 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
   list_.offsets[0] = 0;
   const Real r2max = radius * radius;
   const MinimumImage<D> image(box_);
+  if (radii) {
+    radius2_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) radius2_[i] = std::min(radii[i], radius) * std::min(radii[i], radius);
+  }
+  const Real* r2i = radii ? radius2_.data() : nullptr;
   std::vector<std::uint32_t>* rows = thread_lists_.data();
   int team = 1;
 #pragma omp parallel
@@ -147,8 +153,9 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
         for (std::uint32_t s = s0; s < s1; ++s) {
           const std::uint32_t j = cell_particles_[s];
           const Real d2 = image(points_.data() + D * i, points_.data() + D * j).squaredNorm();
+          const Real reach2 = r2i ? std::max(r2i[i], r2i[j]) : r2max;
           out[pos] = j;
-          pos += (d2 < r2max) & (j != i);
+          pos += (d2 < reach2) & (j != i);
         }
         out.resize(pos);
         int k = 0;
@@ -174,7 +181,7 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
   for (int t = 0; t < team; ++t)
     std::copy(rows[t].begin(), rows[t].end(), list_.indices.begin() + list_.offsets[n * t / team]);
 
-  std::size_t capacity_after = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() +
+  std::size_t capacity_after = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
                                cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
   for (const auto& t : thread_lists_) capacity_after += t.capacity();
   if (capacity_after != capacity_before) ++allocations_;

@@ -46,7 +46,10 @@ class NeighbourSearch {
   // than 2 * radius along a periodic axis (the minimum image would be ambiguous).
   // key (optional, n entries): each row is sorted ascending by key[j] instead of j (a caller
   // that stores particles in its own order keeps a fixed summation order this way).
-  void build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key = nullptr);
+  // radii (optional, n entries, each <= radius): lists every pair with
+  // |x_i - x_j| < max(radii[i], radii[j]) instead (symmetric; radius sizes the cells).
+  void build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key = nullptr,
+             const Real* radii = nullptr);
 
   // Renumbers the built particles: new index i is old index order[i] (a permutation of 0..n-1).
   // The lists, the stored positions and the cells follow; every row keeps its order.
@@ -92,6 +95,7 @@ class NeighbourSearch {
   std::vector<std::uint32_t> inverse_, swap_u32_;         // renumber() scratch
   std::vector<std::size_t> swap_offsets_;
   std::vector<Real> swap_points_;
+  std::vector<Real> radius2_;  // per-particle squared radii of the last build (if given)
   long allocations_ = 0;
 };
 

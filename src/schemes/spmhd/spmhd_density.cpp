@@ -20,15 +20,22 @@
 namespace sphark {
 
 template <int D, class K>
-void SpmhdScheme<D, K>::build_neighbours(const Real* x, Real radius) {
-  ns_.build(x, n_, radius, perm_.data());  // rows sorted by particle index
+void SpmhdScheme<D, K>::build_neighbours(const Real* x) {
+  Real r_max = 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    list_h_[i] = std::max(h_[i], want_[i]);
+    want_[i] = 0;
+    radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
+    r_max = std::max(r_max, radii_[i]);
+  }
+  ns_.build(x, n_, r_max, perm_.data(), radii_.data());  // rows sorted by particle index
   built_ = true;
   ++builds_;
-  sort_slots_by_cell();
   const NeighbourList& L = ns_.list();
   std::size_t longest = 0;
   for (std::size_t i = 0; i < n_; ++i) longest = std::max(longest, L.count(i));
   max_list_ = longest;
+  sort_slots_by_cell();
 }
 
 // Renumbers the slots in the cell order of the fresh lists; the per-slot data that outlives this
@@ -49,12 +56,16 @@ void SpmhdScheme<D, K>::sort_slots_by_cell() {
   permute(h_, 1);
   permute(h_guess_, 1);
   permute(ms_, 1);
+  permute(list_h_, 1);
+  permute(radii_, 1);
   permute(perm_, 1);  // slot indices < 2^31: exact through a double
 }
 
-// Verlet lists built with radius R = support * h_est * (1 + skin). A pair closer than
-// support * h now was closer than support * h + 2 * disp at the build, so the lists serve every
-// h <= (R - 2 disp) / support. The density solve reports particles that need more; then rebuild.
+// Verlet lists with per-particle radii R_i = support * list_h_i * (1 + skin). A pair closer than
+// support * h_i now was closer than support * h_i + 2 disp at the build, so particle i's list
+// serves every h_i <= cap_i = (R_i - 2 disp) / support; a pair of the force loop (closer than
+// support * max(h_a, h_b)) is listed when both h are within their caps. Rebuild when some h
+// (the guess: the previous h) exceeds its cap, or when the density solve reports an h beyond.
 template <int D, class K>
 void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
   if (h_[0] <= 0) {
@@ -66,45 +77,48 @@ void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
     const Real volume = (hi - lo).prod();
     std::fill(h_.begin(), h_.end(), opt_.eta * std::pow(volume / static_cast<Real>(n_), 1.0 / D));
   }
-  Real h_est = *std::max_element(h_.begin(), h_.end());
   h_guess_.assign(h_.begin(), h_.end());  // every attempt starts from the same guesses
   for (int attempt = 0; attempt < 8; ++attempt) {
     if (attempt > 0) std::copy(h_guess_.begin(), h_guess_.end(), h_.begin());
-    Real cap = 0;
     {
       ScopedPhase timer(Phase::Neighbours);
-      if (built_) {
+      bool rebuild = !built_ || attempt > 0;
+      if (!rebuild) {
         const Real disp = opt_.evolve_particles ? ns_.max_displacement_since_build(x) : 0;
-        cap = (ns_.radius() - 2 * disp) / K::support;
+        std::size_t short_lists = 0;
+#pragma omp parallel for schedule(static) reduction(+ : short_lists)
+        for (std::size_t i = 0; i < n_; ++i) {
+          cap_[i] = (radii_[i] - 2 * disp) / K::support;
+          short_lists += h_[i] > cap_[i];
+        }
+        rebuild = short_lists > 0;
       }
-      if (!built_ || cap < h_est) {
-        build_neighbours(x, K::support * h_est * (1 + opt_.skin));
-        cap = ns_.radius() / K::support;
+      if (rebuild) {
+        build_neighbours(x);
+        for (std::size_t i = 0; i < n_; ++i) cap_[i] = radii_[i] / K::support;
       }
     }
     ScopedPhase timer(Phase::DensityH);
-    const DensityStats st = solve_density(x, cap);
+    const DensityStats st = solve_density(x);
     if (st.outside_list == 0) {
       if (st.not_converged > 0) throw std::runtime_error("density: h iteration did not converge");
       return;
     }
-    h_est = std::max(st.h_max, cap) * 1.5;
   }
   throw std::runtime_error("density: smoothing lengths keep growing beyond the neighbour lists");
 }
 
 // Solves (4)-(5) for every particle (Newton-Raphson with a bisection fallback, as
-// sphark::solve_density); h_ holds the initial guess (the previous h). h_list: the largest h
-// the lists can serve.
+// sphark::solve_density); h_ holds the initial guess (the previous h), cap_ the largest h the
+// lists can serve.
 template <int D, class K>
-typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x, Real h_list) {
+typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x) {
   const int threads = omp_get_max_threads();
   const std::size_t stride = 2 * max_list_;
   if (cand_.size() < stride * static_cast<std::size_t>(threads)) cand_.resize(stride * threads);
   const NeighbourList& L = ns_.list();
   const Real* m = ms_.data();
   const MinimumImage<D> image(ns_.box());
-  const Real r_list2 = (K::support * h_list) * (K::support * h_list);
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
   const Real w0 = K::w(0, 1.0);  // sigma f(0)
   std::size_t not_converged = 0, outside = 0, iterations = 0;
@@ -115,6 +129,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
     Real* mc = rc + max_list_;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n_; ++i) {
+      const Real h_list = cap_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
       // Candidates: every listed neighbour that any trial h <= h_list can reach, in list order.
       std::size_t nc = 0;
       for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
@@ -172,7 +187,10 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       // with h, so the root is beyond h_list exactly when f(h_list) < 0.
       if (hh > h_list * (1 - 1e-6)) {
         density_at(h_list, r, dr);
-        if (r < m_eta / std::pow(h_list, D)) ++outside;
+        if (r < m_eta / std::pow(h_list, D)) {
+          ++outside;
+          want_[i] = 1.5 * h_list;
+        }
       }
     }
   }
@@ -181,10 +199,10 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
 }
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
-  template void SpmhdScheme<D, K>::build_neighbours(const Real*, Real);                         \
+  template void SpmhdScheme<D, K>::build_neighbours(const Real*);                               \
   template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real*);                  \
-  template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*, Real);
+  template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*);
 SPHARK_SPMHD_DENSITY(2, CubicSpline<2>)
 SPHARK_SPMHD_DENSITY(3, CubicSpline<3>)
 #undef SPHARK_SPMHD_DENSITY

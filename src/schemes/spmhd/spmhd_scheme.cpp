@@ -72,6 +72,10 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   oM_.assign(D * D * n_, 0);
   oB_.assign(3 * n_, 0);
   opsi_.assign(n_, 0);
+  list_h_.assign(n_, 0);
+  cap_.assign(n_, 0);
+  want_.assign(n_, 0);
+  radii_.assign(n_, 0);
   perm_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) perm_[i] = static_cast<std::uint32_t>(i);
   ms_ = m_;

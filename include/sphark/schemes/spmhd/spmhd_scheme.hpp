@@ -87,12 +87,12 @@ class SpmhdScheme final : public OdeSystem {
  private:
   int prepare(const Real* y);                      // neighbours, density, P, c, B, c_h
   void ensure_neighbours_and_density(const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
-  void build_neighbours(const Real* x, Real radius);
+  void build_neighbours(const Real* x);  // lists for list_h_, then slots in cell order
   struct DensityStats {
     std::size_t not_converged = 0, outside_list = 0, iterations = 0;
     Real h_max = 0;
   };
-  DensityStats solve_density(const Real* x, Real h_list);
+  DensityStats solve_density(const Real* x);  // h_[i] <= cap_[i]; sets want_ where not enough
   void euler_potential_field(const Real* x, const Real* alpha);
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
@@ -124,6 +124,10 @@ class SpmhdScheme final : public OdeSystem {
   // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
   std::vector<Real> hinv_, fscale_, o_, oM_, oB_, opsi_;
   std::vector<Real> h_guess_;       // h at the start of the density solve
+  // Per-particle Verlet lists: particle i's list radius is support * list_h_[i] * (1 + skin)
+  // (a pair is listed if closer than the larger of its two radii); cap_[i], the largest h the
+  // lists serve now; want_[i] > 0: the h the next build must serve (an h grew past cap_[i]).
+  std::vector<Real> list_h_, cap_, want_, radii_;
   std::vector<Real> cand_;          // per-thread candidate (r^2, r, m) of the density solve
   std::size_t max_list_ = 0;        // longest neighbour list of the current build
   std::size_t interacting_pairs_ = 0;
