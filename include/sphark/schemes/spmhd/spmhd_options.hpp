@@ -37,7 +37,7 @@ struct SpmhdOptions {
   Real alpha_b = 0.0;           // artificial resistivity, seed 000 eq. (10) (0 = off)
 
   Real courant = 0.3;           // for max_stable_dt: C h / v_sig
-  Real skin = 0.25;             // Verlet skin, in units of the largest h
+  Real skin = 0.25;             // Verlet skin: particle i lists neighbours within 2 h_i (1 + skin)
 };
 
 // "none", "constrained", "nonconservative"

@@ -9,7 +9,7 @@
 //
 // The RHS is gather-form (each particle sums its own neighbours; OpenMP over particles, no
 // races, results independent of the thread count), and allocates nothing after the first call
-// except when the Verlet lists must be rebuilt. Per-particle quantities of the pair loops are
+// unless a rebuilt Verlet list outgrows its buffers. Per-particle quantities of the pair loops are
 // kept as structure-of-arrays, filled once per RHS (prepare()).
 //
 // Memory order: internally particles live in "slots" sorted by neighbour-grid cell, renewed at
