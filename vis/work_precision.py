@@ -230,8 +230,9 @@ def summary(rows, stab, ref, path, scene):
             c = cheapest([r for r in ok if not math.isnan(r[metric])], metric, lev, "rhs_evals")
             l = cheapest(lf, metric, lev, "rhs_evals")
             lc = cheapest(lf, metric, lev, "cpu_s")
+            no_lf = "no leapfrog run (the scene cannot run it)" if not lf else "not reached"
             out.append(f"| {lev:.0e} | {describe_point(c) if c else 'not reached'} | {fmt(c and c['rhs_evals'], '.0f')} | "
-                       f"{fmt(c and c['cpu_s'], '.2f')} | {describe_point(l) if l else 'not reached'} | "
+                       f"{fmt(c and c['cpu_s'], '.2f')} | {describe_point(l) if l else no_lf} | "
                        f"{fmt(l and l['rhs_evals'], '.0f')} | "
                        f"{fmt(c['rhs_evals'] / l['rhs_evals'] if c and l else None, '.2f')} | "
                        f"{fmt(c['cpu_s'] / lc['cpu_s'] if c and lc and lc['cpu_s'] > 0 else None, '.2f')} |")
