@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
   std::string what = "all";
   s.rtols = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   s.fixed_cfls = {0.1, 0.2, 0.4, 0.8};
-  s.leapfrog_cfls = {0.025, 0.05, 0.1, 0.2, 0.4};
+  s.leapfrog_cfls = {0.025, 0.05, 0.1, 0.2, 0.4, 0.8};
   int threads = 1;
   bool render = true;
   Real ref_rtol = s.reference.rtol;
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   OptionParser p("stepper_study", "work-precision charts and stability limits of the time steppers on one scene");
   p.add("--scene", &scene_name, "scene", OneOf{study_scene_names()});
   p.add("--out", &out, "output directory (default out/stepper_study/<scene>)", "DIR");
-  p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles, disc 0.08 = 484, orszag_tang 1/32 = 32 x 36)", NonNegative{});
+  p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles, disc 0.08 = 484, orszag_tang 1/16 = 16 x 18)", NonNegative{});
   p.add("--t-end", &so.t_end, "end time (0: scene default; drop 0.025, disc 10, orszag_tang 0.5)", NonNegative{});
   p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default: drop 25, disc 20, orszag_tang 10)", NonNegative{});
   p.add("--what", &what, "what to run", OneOf{{"all", "matrix", "stability"}});

@@ -1,6 +1,6 @@
 // Orszag-Tang (seed 000, §IV-B) as a stepper-study scene: the "cleaning" variant of
 // examples/orszag_tang (constrained cleaning, sigma = 0.3, artificial viscosity and
-// conductivity on, no resistivity) on a small hexagonal lattice (default 24 x 28 = 672
+// conductivity on, no resistivity) on a small hexagonal lattice (default 16 x 18 = 288
 // particles, t_end = 0.5: the shocks have formed). No exact solution: the error is the L1
 // density difference against a tight-tolerance reference run of the same particles, particle by
 // particle (Lagrangian): (1/N) sum_a |rho_a - rho_ref,a| / rho0, with rho by summation (eq. (4)).
@@ -50,7 +50,7 @@ class OrszagTangProblem final : public StudyProblem {
 class OrszagTangScene final : public StudyScene {
  public:
   explicit OrszagTangScene(const StudySceneOptions& so) {
-    nx_ = so.spacing > 0 ? static_cast<int>(std::lround(1 / so.spacing)) : 24;
+    nx_ = so.spacing > 0 ? static_cast<int>(std::lround(1 / so.spacing)) : 16;
     if (nx_ < 8) throw std::invalid_argument("spacing=" + std::to_string(so.spacing) + ": orszag_tang needs 1/spacing >= 8");
     ny_ = hexagonal_rows(nx_);
     t_end_ = so.t_end > 0 ? so.t_end : 0.5;

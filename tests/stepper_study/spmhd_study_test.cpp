@@ -2,6 +2,7 @@
 // is an exact invariant of the sigma = 0 ODE) and Orszag-Tang.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -61,7 +62,9 @@ TEST(StepperStudyOrszagTang, ErkAndImexAgreeWithinTolerance) {
 
 TEST(StepperStudy, UnknownSceneIsAnError) {
   EXPECT_THROW(make_study_scene("nope", {}), std::invalid_argument);
-  EXPECT_EQ(study_scene_names().size(), 4u);
+  const auto names = study_scene_names();
+  for (const char* n : {"drop", "disc", "disc_damped", "orszag_tang"})
+    EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
 }
 
 }  // namespace
