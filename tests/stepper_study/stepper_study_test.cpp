@@ -127,13 +127,19 @@ WaterDrop plain_drop() {
   return make_water_drop(c);
 }
 
+// Fixed step dt = cfl x the drop's CFL unit (its max_stable_dt at t = 0 with cfl 1).
+StepperOptions fixed_cfl(const std::string& method, Real cfl, WaterDrop& drop) {
+  StepperOptions o;
+  o.method = method;
+  o.fixed_dt = cfl * drop.model->system().max_stable_dt(0, drop.y0.data());
+  return o;
+}
+
 // Max |E(t) - E0| / E0 per drop period (~0.05 for A = omega = 100) at fixed dt = cfl x CFL unit.
 std::vector<Real> energy_error_per_period(const std::string& method, Real cfl, int periods) {
   WaterDrop drop = plain_drop();
   OdeSystem& sys = drop.model->system();
-  StepperOptions o;
-  o.method = method;
-  o.fixed_dt = cfl * sys.max_stable_dt(0, drop.y0.data());
+  const StepperOptions o = fixed_cfl(method, cfl, drop);
   std::vector<Real> y = drop.y0;
   auto stepper = make_stepper(sys, o, 0, y.data());
   const Real e0 = drop.model->diagnostics(0, y.data()).total_energy;
@@ -155,9 +161,7 @@ std::vector<Real> energy_error_per_period(const std::string& method, Real cfl, i
 Real reversal_error(const std::string& method, Real cfl, int steps) {
   WaterDrop drop = plain_drop();
   OdeSystem& sys = drop.model->system();
-  StepperOptions o;
-  o.method = method;
-  o.fixed_dt = cfl * sys.max_stable_dt(0, drop.y0.data());
+  const StepperOptions o = fixed_cfl(method, cfl, drop);
   std::vector<Real> y = drop.y0;
   const std::size_t v0 = sys.velocity_offset(), np = sys.position_size();
   Real t = 0;

@@ -121,7 +121,7 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
 // The same with core_stepper_names().
 void add_core_options(OptionParser& p, CoreOptions& o);
 
-// Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog", "leapfrog-rev".
+// Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog".
 std::vector<std::string> core_stepper_names();
 
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt.
