@@ -26,6 +26,27 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 FLOOR = 1e-15  # errors below this (round-off) are drawn at the floor
 LEVELS = [1e-2, 1e-3, 1e-4, 1e-6, 1e-8]
+LEAPFROGS = ("leapfrog", "leapfrog-rev")
+
+# What each error column measures, per scene: (time_error, position_error, error vs exact).
+LABELS = {
+    "drop": ("max relative semi-axis difference vs reference run",
+             "max RMS position difference / R vs reference run",
+             "max relative semi-axis error vs exact solution"),
+    "disc": ("max relative cleaning-energy difference vs reference run",
+             "max RMS field difference (B / B0, psi / (c_h B0)) vs reference run",
+             "max relative change of the cleaning energy (exact invariant)"),
+    "disc_damped": ("max relative cleaning-energy difference vs reference run",
+                    "max RMS field difference (B / B0, psi / (c_h B0)) vs reference run",
+                    None),
+    "orszag_tang": ("max L1 density difference / rho0 vs reference run",
+                    "max RMS position difference / box vs reference run",
+                    None),
+}
+SHORT_LABELS = {"drop": ("semi-axis time error", "RMS position time error / R", "semi-axis error vs exact"),
+                "disc": ("cleaning-energy time error", "RMS field time error", "cleaning-energy change"),
+                "disc_damped": ("cleaning-energy time error", "RMS field time error", None),
+                "orszag_tang": ("L1 density time error", "RMS position time error", None)}
 
 
 def fail(msg):
@@ -49,13 +70,16 @@ def read(path):
 
 def short(method):
     m = method.replace("ARKODE_", "")
-    return {"ark-imex": "ARK-IMEX 436L2SA", "leapfrog": "leapfrog KDK"}.get(m, m)
+    return {"ark-imex": "ARK-IMEX 436L2SA", "leapfrog": "leapfrog KDK",
+            "leapfrog-rev": "leapfrog-rev (2 RHS/step)"}.get(m, m)
 
 
 def stages(method):
     """RHS evaluations per step by the table's name (FSAL tables reuse one: BS3 3, DP5 6)."""
     if method == "leapfrog":
         return 1
+    if method == "leapfrog-rev":
+        return 2
     if method == "ark-imex":
         return 6
     nums = [int(t) for t in method.split("_") if t.isdigit()]
@@ -69,15 +93,15 @@ def curve_key(r):
 
 def curve_label(key):
     m, mode = key
-    if m == "leapfrog":
-        return "leapfrog KDK (fixed CFL)"
+    if m in LEAPFROGS:
+        return f"{short(m)} (fixed CFL)"
     return f"{short(m)} ({mode})"
 
 
 def curves(rows):
     out = {}
     for r in rows:
-        if r["status"] != "ok":
+        if r["status"] != "ok" or not isinstance(r["rhs_evals"], float):
             continue
         out.setdefault(curve_key(r), []).append(r)
     for k in out:
@@ -86,10 +110,11 @@ def curves(rows):
 
 
 def styles(keys):
-    methods = sorted({k[0] for k in keys}, key=lambda m: (m == "leapfrog", m))
+    methods = sorted({k[0] for k in keys}, key=lambda m: (m in LEAPFROGS, m))
     cmap = plt.get_cmap("tab10")
     colour = {m: cmap(i % 10) for i, m in enumerate(methods)}
     colour["leapfrog"] = "black"
+    colour["leapfrog-rev"] = "dimgrey"
     dash = {"capped": "-", "uncapped": "--", "fixed": ":"}
     mark = {"capped": "o", "uncapped": "s", "fixed": "^"}
     return {k: dict(color=colour[k[0]], linestyle=dash.get(k[1], "-"), marker=mark.get(k[1], "o"),
@@ -98,6 +123,9 @@ def styles(keys):
 
 def plot_curves(ax, cs, st, x, y, xlabel, ylabel):
     for k, pts in sorted(cs.items()):
+        pts = [p for p in pts if not math.isnan(p[y])]
+        if not pts:
+            continue
         xs = [p[x] for p in pts]
         ys = [max(p[y], FLOOR) for p in pts]
         ax.loglog(xs, ys, label=curve_label(k), **st[k])
@@ -177,30 +205,34 @@ def fmt(v, spec=".3g"):
     return "—" if v is None or (isinstance(v, float) and math.isnan(v)) else format(v, spec)
 
 
-def summary(rows, stab, ref, path):
+def summary(rows, stab, ref, path, scene):
     ok = [r for r in rows if r["status"] == "ok"]
-    lf = [r for r in ok if r["method"] == "leapfrog"]
+    lf = [r for r in ok if r["method"] in LEAPFROGS]
+    tl, pl, el = SHORT_LABELS.get(scene, SHORT_LABELS["drop"])
     cs = curves(rows)
     out = []
     if ref:
         out.append(f"Reference run: {describe_point(ref[0])}, {int(ref[0]['rhs_evals'])} RHS evaluations; "
-                   f"check run {describe_point(ref[1]) if len(ref) > 1 else '—'}: semi-axis difference "
-                   f"{fmt(ref[1]['time_error'] if len(ref) > 1 else None)}, RMS position difference "
+                   f"check run {describe_point(ref[1]) if len(ref) > 1 else '—'}: {tl} "
+                   f"{fmt(ref[1]['time_error'] if len(ref) > 1 else None)}, {pl} "
                    f"{fmt(ref[1]['position_error'] if len(ref) > 1 else None)} (the floor of the time errors).\n")
-        out.append(f"Total error of the reference against the exact ellipse (spatial floor): "
-                   f"{100 * ref[0]['error']:.3f}%.\n")
-    for metric, name in (("time_error", "semi-axis time error (vs the reference run)"),
-                         ("position_error", "RMS position time error / R (vs the reference run)")):
+        if el:
+            out.append(f"Error of the reference run against the exact solution ({el}): {fmt(ref[0]['error'])}.\n")
+    metrics = [("time_error", f"{tl} (vs the reference run)"), ("position_error", f"{pl} (vs the reference run)")]
+    if el:
+        metrics.append(("error", f"{el} (vs the exact solution: space + time)"))
+    for metric, name in metrics:
         out.append(f"\n### Cheapest run per accuracy: {name}\n")
         out.append("| accuracy | cheapest run (RHS evals) | RHS evals | CPU s | cheapest leapfrog | leapfrog RHS | "
                    "cost / leapfrog (RHS) | cost / leapfrog (CPU) |")
         out.append("|---|---|---|---|---|---|---|---|")
         for lev in LEVELS:
-            c = cheapest(ok, metric, lev, "rhs_evals")
+            c = cheapest([r for r in ok if not math.isnan(r[metric])], metric, lev, "rhs_evals")
             l = cheapest(lf, metric, lev, "rhs_evals")
             lc = cheapest(lf, metric, lev, "cpu_s")
+            no_lf = "no leapfrog run (the scene cannot run it)" if not lf else "not reached"
             out.append(f"| {lev:.0e} | {describe_point(c) if c else 'not reached'} | {fmt(c and c['rhs_evals'], '.0f')} | "
-                       f"{fmt(c and c['cpu_s'], '.2f')} | {describe_point(l) if l else 'not reached'} | "
+                       f"{fmt(c and c['cpu_s'], '.2f')} | {describe_point(l) if l else no_lf} | "
                        f"{fmt(l and l['rhs_evals'], '.0f')} | "
                        f"{fmt(c['rhs_evals'] / l['rhs_evals'] if c and l else None, '.2f')} | "
                        f"{fmt(c['cpu_s'] / lc['cpu_s'] if c and lc and lc['cpu_s'] > 0 else None, '.2f')} |")
@@ -245,14 +277,14 @@ def summary(rows, stab, ref, path):
         if not rr:
             continue
         rtols = sorted({r["rtol"] for r in rr}, reverse=True)
-        out.append(f"\n### Adaptive runs, {mode}: semi-axis time error / total error vs exact (%)\n")
+        out.append(f"\n### Adaptive runs, {mode}: {tl} / {el or 'no exact solution'}\n")
         out.append("| method | " + " | ".join(f"{t:.0e}" for t in rtols) + " |")
         out.append("|---|" + "---|" * len(rtols))
         for m in sorted({r["method"] for r in rr}):
             cells = []
             for t in rtols:
                 x = [r for r in rr if r["method"] == m and r["rtol"] == t]
-                cells.append(f"{x[0]['time_error']:.1e} / {100 * x[0]['error']:.2f}" if x else "")
+                cells.append(f"{x[0]['time_error']:.1e} / {fmt(x[0]['error'], '.1e')}" if x else "")
             out.append(f"| {short(m)} | " + " | ".join(cells) + " |")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
@@ -273,18 +305,17 @@ def main():
     scene = (rows or stab)[0]["scene"]
     if rows:
         cs = curves(rows)
-        work_precision_chart(cs, os.path.join(a.dir, "work_precision_time.png"), "time_error",
-                             "max relative semi-axis difference vs reference run",
-                             f"{scene}: time-integration error (semi-axes) — work-precision")
-        work_precision_chart(cs, os.path.join(a.dir, "work_precision_position.png"), "position_error",
-                             "max RMS position difference / R vs reference run",
-                             f"{scene}: time-integration error (positions) — work-precision")
-        work_precision_chart(cs, os.path.join(a.dir, "work_precision_total.png"), "error",
-                             "max relative semi-axis error vs exact solution",
-                             f"{scene}: total error (space + time) against the exact solution")
+        tl, pl, el = LABELS.get(scene, LABELS["drop"])
+        work_precision_chart(cs, os.path.join(a.dir, "work_precision_time.png"), "time_error", tl,
+                             f"{scene}: time-integration error — work-precision")
+        work_precision_chart(cs, os.path.join(a.dir, "work_precision_position.png"), "position_error", pl,
+                             f"{scene}: time-integration error ({pl.split(' vs')[0].replace('max ', '')}) — work-precision")
+        if el:
+            work_precision_chart(cs, os.path.join(a.dir, "work_precision_total.png"), "error", el,
+                                 f"{scene}: error against the exact solution / invariant")
     if stab or rows:
         stability_chart(stab, rows, os.path.join(a.dir, "stability.png"))
-    summary(rows, stab, ref, os.path.join(a.dir, "summary.md"))
+    summary(rows, stab, ref, os.path.join(a.dir, "summary.md"), scene)
 
 
 if __name__ == "__main__":

@@ -33,7 +33,7 @@ std::vector<std::string> method_list(const OptionParser& p, const std::string& o
         std::find(tables.begin(), tables.end(), "ARKODE_" + m) != tables.end())
       m = "ARKODE_" + m;
     const bool erk = std::find(tables.begin(), tables.end(), m) != tables.end();
-    if (!erk && m != "ark-imex" && !(allow_leapfrog && m == "leapfrog"))
+    if (!erk && m != "ark-imex" && !(allow_leapfrog && (m == "leapfrog" || m == "leapfrog-rev")))
       p.fail(option, "unknown method '" + m + "'");
     if (erk && adaptive_only && !erk_table_has_embedding(m)) p.fail(option, "'" + m + "' has no embedding (no adaptive steps)");
     out.push_back(m);
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
   std::string what = "all";
   s.rtols = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   s.fixed_cfls = {0.1, 0.2, 0.4, 0.8};
-  s.leapfrog_cfls = {0.025, 0.05, 0.1, 0.2, 0.4};
+  s.leapfrog_cfls = {0.025, 0.05, 0.1, 0.2, 0.4, 0.8};
   int threads = 1;
   bool render = true;
   Real ref_rtol = s.reference.rtol;
@@ -64,17 +64,19 @@ int main(int argc, char** argv) {
   OptionParser p("stepper_study", "work-precision charts and stability limits of the time steppers on one scene");
   p.add("--scene", &scene_name, "scene", OneOf{study_scene_names()});
   p.add("--out", &out, "output directory (default out/stepper_study/<scene>)", "DIR");
-  p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles)", NonNegative{});
-  p.add("--t-end", &so.t_end, "end time (0: scene default; drop 0.025, one squeeze and back)", NonNegative{});
-  p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default, 25)", NonNegative{});
+  p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles, disc 0.08 = 484, orszag_tang 1/16 = 16 x 18)", NonNegative{});
+  p.add("--t-end", &so.t_end, "end time (0: scene default; drop 0.025, disc 10, orszag_tang 0.5)", NonNegative{});
+  p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default: drop 25, disc 20, orszag_tang 10)", NonNegative{});
   p.add("--what", &what, "what to run", OneOf{{"all", "matrix", "stability"}});
-  p.add("--methods", &adaptive, "adaptive methods (ERK tables with an embedding, ark-imex), comma-separated");
+  p.add("--methods", &adaptive, "adaptive methods (ERK tables with an embedding, ark-imex), comma-separated; 'none'");
   p.add("--modes", &modes, "adaptive modes: capped (dt <= cap-cfl x CFL unit), uncapped, or both", OneOf{{"capped", "uncapped", "capped,uncapped"}});
   p.add("--rtols", &s.rtols, "relative tolerances of the adaptive runs", Positive{});
   p.add("--cap-cfl", &s.limits.cap_cfl, "CFL number of the step cap of capped adaptive runs", Positive{});
   p.add("--fixed-methods", &fixed, "methods run at every --fixed-cfls (ERK tables, ark-imex; 'none')");
   p.add("--fixed-cfls", &s.fixed_cfls, "CFL numbers of the fixed-step runs", Positive{});
   p.add("--leapfrog-cfls", &s.leapfrog_cfls, "CFL numbers of the leapfrog runs", Positive{});
+  std::string leapfrogs = "leapfrog,leapfrog-rev";
+  p.add("--leapfrog-methods", &leapfrogs, "leapfrog variants run at every --leapfrog-cfls (leapfrog, leapfrog-rev; 'none')");
   p.add("--reference-rtol", &ref_rtol, "rtol of the reference run (VERNER_8_5_6) and its check (FEHLBERG_13_7_8)", Positive{});
   p.add("--max-rhs", &s.limits.max_rhs_evals, "stop a run after this many RHS evaluations", Positive{});
   p.add("--stability-methods", &stability, "methods of the stability bisection ('all': every ERK table, ark-imex, leapfrog)");
@@ -85,12 +87,16 @@ int main(int argc, char** argv) {
   p.add_flag("--no-render", &render, "do not draw the charts", false);
   p.parse_or_exit(argc, argv);
 
-  s.adaptive_methods = method_list(p, "--methods", adaptive, true, false);
+  s.adaptive_methods = adaptive == "none" ? std::vector<std::string>{} : method_list(p, "--methods", adaptive, true, false);
+  s.leapfrog_methods = leapfrogs == "none" ? std::vector<std::string>{} : split(leapfrogs);
+  for (const std::string& m : s.leapfrog_methods)
+    if (m != "leapfrog" && m != "leapfrog-rev") p.fail("--leapfrog-methods", "unknown leapfrog variant '" + m + "'");
   s.fixed_methods = fixed == "none" ? std::vector<std::string>{} : method_list(p, "--fixed-methods", fixed, false, false);
   if (stability == "all") {
     s.stability_methods = erk_table_names();
     s.stability_methods.push_back("ark-imex");
     s.stability_methods.push_back("leapfrog");
+    s.stability_methods.push_back("leapfrog-rev");
   } else {
     s.stability_methods = method_list(p, "--stability-methods", stability, false, true);
   }

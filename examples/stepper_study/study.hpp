@@ -18,6 +18,7 @@ struct StudySettings {
   std::vector<std::string> fixed_methods;     // run at every fixed CFL number (leapfrog has its own list)
   std::vector<Real> fixed_cfls;
   std::vector<Real> leapfrog_cfls;
+  std::vector<std::string> leapfrog_methods{"leapfrog", "leapfrog-rev"};  // run at every leapfrog CFL
   StudyCase reference{"ARKODE_VERNER_8_5_6", StudyMode::Capped, 1e-10, 0};
   StudyCase reference_check{"ARKODE_FEHLBERG_13_7_8", StudyMode::Capped, 1e-10, 0};
   StudyLimits limits;
@@ -29,6 +30,9 @@ struct StudySettings {
 // Writes <out>/work_precision.csv (one row per case, appended as runs finish) and
 // <out>/reference.csv (the reference run and its check). Returns false if the reference failed.
 bool run_work_precision(const StudyScene& scene, const StudySettings& s);
+// Why `method` cannot run on the scene (leapfrog without moving particles, ark-imex without a
+// stiff part), or "" if it can.
+std::string unsupported(const StudyScene& scene, const std::string& method);
 // Writes <out>/stability.csv.
 void run_stability(const StudyScene& scene, const StudySettings& s);
 

@@ -49,6 +49,14 @@ void print(const StudyCase& c, const StudyResult& r, const StudyErrors& e) {
 
 }  // namespace
 
+std::string unsupported(const StudyScene& scene, const std::string& method) {
+  const std::unique_ptr<StudyProblem> p = scene.build();
+  if ((method == "leapfrog" || method == "leapfrog-rev") && p->system().position_size() == 0)
+    return "the scene's particles do not move (no position block)";
+  if (method == "ark-imex" && !p->system().has_stiff_diagonal()) return "the scene has no stiff part";
+  return {};
+}
+
 bool run_work_precision(const StudyScene& scene, const StudySettings& s) {
   std::printf("reference: %s rtol %.0e (check: %s rtol %.0e)\n", s.reference.method.c_str(), s.reference.rtol,
               s.reference_check.method.c_str(), s.reference_check.rtol);
@@ -68,6 +76,10 @@ bool run_work_precision(const StudyScene& scene, const StudySettings& s) {
 
   RowWriter csv(s.out / "work_precision.csv");
   const auto run = [&](const StudyCase& c) {
+    if (const std::string why = unsupported(scene, c.method); !why.empty()) {
+      std::printf("%-32s skipped: %s\n", c.method.c_str(), why.c_str());
+      return;
+    }
     const StudyResult r = run_study_case(scene, c, s.limits);
     const StudyErrors e = study_errors(scene, r, ref);
     print(c, r, e);
@@ -78,7 +90,8 @@ bool run_work_precision(const StudyScene& scene, const StudySettings& s) {
       for (Real rtol : s.rtols) run({m, mode, rtol, 0});
   for (const std::string& m : s.fixed_methods)
     for (Real cfl : s.fixed_cfls) run({m, StudyMode::Fixed, 0, cfl});
-  for (Real cfl : s.leapfrog_cfls) run({"leapfrog", StudyMode::Fixed, 0, cfl});
+  for (const std::string& m : s.leapfrog_methods)
+    for (Real cfl : s.leapfrog_cfls) run({m, StudyMode::Fixed, 0, cfl});
   return true;
 }
 
@@ -88,6 +101,10 @@ void run_stability(const StudyScene& scene, const StudySettings& s) {
   f << "scene,method,cfl_stable,cfl_unstable,horizon,energy_tolerance,trials,cpu_s,unstable_reason\n";
   const Real horizon = s.stability.horizon > 0 ? s.stability.horizon : scene.t_end();
   for (const std::string& m : s.stability_methods) {
+    if (const std::string why = unsupported(scene, m); !why.empty()) {
+      std::printf("stability %-32s skipped: %s\n", m.c_str(), why.c_str());
+      continue;
+    }
     const StabilityLimit L = find_stability_limit(scene, m, s.stability);
     std::printf("stability %-32s CFL stable %.4g unstable %.4g  (%d trials, cpu %.1f s)  %s\n", m.c_str(), L.cfl_stable,
                 L.cfl_unstable, L.trials, L.cpu_seconds, L.unstable_reason.c_str());

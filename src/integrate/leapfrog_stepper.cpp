@@ -1,10 +1,31 @@
-// Kick-drift-kick leapfrog, one RHS evaluation per step (FSAL, Phantom style). With w every
+// Leapfrog steppers, one class, two variants (both fixed dt or dt = cfl_safety x max_stable_dt).
+//
+// "leapfrog": kick-drift-kick, one RHS evaluation per step (FSAL, Phantom style). With w every
 // entry except the positions x (velocity, density, energy, B, psi, ...):
 //   w_half  = w_n + dt/2 ẇ_n                  (kick)
 //   x_{n+1} = x_n + dt v_half                 (drift)
 //   w*      = w_half + dt/2 ẇ_n               (predictor for the velocity-dependent RHS)
 //   ẇ_{n+1} = f(t_{n+1}, x_{n+1}, w*)
 //   w_{n+1} = w_half + dt/2 ẇ_{n+1}           (kick)
+// It kicks the continuity density like a velocity, with dρ/dt = Σ m v_ab·∇W_ab evaluated at the
+// start velocity and at the PREDICTED end velocity w*: the map is not time-reversible and its
+// energy error grows over periods (docs/time_integration.md).
+//
+// "leapfrog-rev": kick-drift-kick in which only v is kicked; every other entry q (ρ, u, B, ψ)
+// is advanced in the drift together with x, by the midpoint rule along the straight drift path.
+// Two RHS evaluations per step:
+//   v_half  = v_n + dt/2 a_n                              (kick)
+//   x_mid   = x_n + dt/2 v_half,  q* = q_n + dt/2 q̇_n     (q* only for a q-dependent q̇)
+//   q_{n+1} = q_n + dt q̇(x_mid, v_half, q*)               (drift of q, midpoint rule)
+//   x_{n+1} = x_n + dt v_half                             (drift of x)
+//   a_{n+1} = a(x_{n+1}, v_half + dt/2 a_n, q_{n+1})
+//   v_{n+1} = v_half + dt/2 a_{n+1}                       (kick)
+// For constant-h continuity-density WCSPH without diffusion, viscosity and cleaning, dρ_a/dt =
+// Σ_b m_b v_ab·∇W_ab = d/dt Σ_b m_b W_ab(x) (seed 000, eq. (28)): ρ is a function of x (plus a
+// constant), the system is Hamiltonian, and this step is time-reversible (v -> -v maps the step
+// onto its inverse: q̇ is odd in v and independent of q, a is independent of v). Where q̇
+// depends on q (δ-SPH, ψ damping) or a on v (viscosity) it is reversible only up to O(dt^3) of
+// the predictors.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -33,12 +54,16 @@ bool crossed(Real before, Real after) {
 
 class LeapfrogStepper final : public Stepper {
  public:
-  LeapfrogStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0)
-      : system_(system), opts_(opts), n_(system.size()), t_(t0), y_(y0, y0 + n_),
+  LeapfrogStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0, bool reversible)
+      : system_(system), opts_(opts), n_(system.size()), reversible_(reversible), t_(t0), y_(y0, y0 + n_),
         dy_(n_), y_new_(n_), dy_new_(n_), pred_(n_),
         g_(system.num_roots()), g_new_(system.num_roots()) {
     const std::size_t p0 = system.position_offset(), np = system.position_size();
-    for (std::size_t k = 0; k < n_; ++k) is_position_.push_back(k >= p0 && k < p0 + np);
+    const std::size_t v0 = system.velocity_offset();
+    for (std::size_t k = 0; k < n_; ++k) {
+      is_position_.push_back(k >= p0 && k < p0 + np);
+      is_velocity_.push_back(k >= v0 && k < v0 + np);
+    }
   }
 
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
@@ -105,9 +130,13 @@ class LeapfrogStepper final : public Stepper {
     return dt;
   }
 
-  // One KDK step of length dt from (t_, y_, dy_) into (y_new_, dy_new_). Returns the RHS code.
   int step(Real dt) {
     ++stats_.attempts;
+    return reversible_ ? step_reversible(dt) : step_kdk(dt);
+  }
+
+  // One KDK step of length dt from (t_, y_, dy_) into (y_new_, dy_new_). Returns the RHS code.
+  int step_kdk(Real dt) {
     for (std::size_t k = 0; k < n_; ++k)
       if (!is_position_[k]) y_new_[k] = y_[k] + 0.5 * dt * dy_[k];  // kick
     const std::size_t p0 = system_.position_offset(), v0 = system_.velocity_offset();
@@ -120,6 +149,32 @@ class LeapfrogStepper final : public Stepper {
     if (code != 0) return code;
     for (std::size_t k = 0; k < n_; ++k)
       if (!is_position_[k]) y_new_[k] += 0.5 * dt * dy_new_[k];  // kick
+    return 0;
+  }
+
+  // One "leapfrog-rev" step (header): only v is kicked, x and every other entry q drift.
+  int step_reversible(Real dt) {
+    const std::size_t p0 = system_.position_offset(), v0 = system_.velocity_offset();
+    const std::size_t np = system_.position_size();
+    for (std::size_t i = 0; i < np; ++i) y_new_[v0 + i] = y_[v0 + i] + 0.5 * dt * dy_[v0 + i];  // kick
+    for (std::size_t k = 0; k < n_; ++k)
+      if (!is_position_[k] && !is_velocity_[k]) pred_[k] = y_[k] + 0.5 * dt * dy_[k];  // q*
+    for (std::size_t i = 0; i < np; ++i) {
+      pred_[p0 + i] = y_[p0 + i] + 0.5 * dt * y_new_[v0 + i];  // x_mid
+      pred_[v0 + i] = y_new_[v0 + i];                          // v_half
+    }
+    const Real t_mid = t_ + 0.5 * dt;
+    int code = call("rhs", t_mid, [&] { return system_.rhs(t_mid, pred_.data(), dy_new_.data()); });
+    if (code != 0) return code;
+    for (std::size_t k = 0; k < n_; ++k)
+      if (!is_position_[k] && !is_velocity_[k]) y_new_[k] = y_[k] + dt * dy_new_[k];  // drift of q
+    for (std::size_t i = 0; i < np; ++i) y_new_[p0 + i] = y_[p0 + i] + dt * y_new_[v0 + i];  // drift of x
+    std::copy(y_new_.begin(), y_new_.end(), pred_.begin());
+    for (std::size_t i = 0; i < np; ++i) pred_[v0 + i] += 0.5 * dt * dy_[v0 + i];  // predictor of v
+    const Real t1 = t_ + dt;
+    code = call("rhs", t1, [&] { return system_.rhs(t1, pred_.data(), dy_new_.data()); });
+    if (code != 0) return code;
+    for (std::size_t i = 0; i < np; ++i) y_new_[v0 + i] += 0.5 * dt * dy_new_[v0 + i];  // kick
     return 0;
   }
 
@@ -240,17 +295,18 @@ class LeapfrogStepper final : public Stepper {
 
   void fail(const std::string& what) {
     failed_ = true;
-    failure_ = "leapfrog: " + what + " at t=" + at_time(t_);
+    failure_ = std::string(reversible_ ? "leapfrog-rev: " : "leapfrog: ") + what + " at t=" + at_time(t_);
     if (!callback_error_.empty()) failure_ += "; " + callback_error_;
   }
 
   OdeSystem& system_;
   const StepperOptions opts_;
   const std::size_t n_;
+  const bool reversible_;
   Real t_;
   Real t_lost_ = 0;  // Kahan compensation of t_
   std::vector<Real> y_, dy_, y_new_, dy_new_, pred_, g_, g_new_;
-  std::vector<bool> is_position_;
+  std::vector<bool> is_position_, is_velocity_;
   std::vector<int> roots_;
   StepperStats stats_;
   std::string failure_, callback_error_;
@@ -261,7 +317,7 @@ class LeapfrogStepper final : public Stepper {
 
 std::unique_ptr<Stepper> make_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts,
                                                Real t0, const Real* y0) {
-  return std::make_unique<LeapfrogStepper>(system, opts, t0, y0);
+  return std::make_unique<LeapfrogStepper>(system, opts, t0, y0, opts.method == "leapfrog-rev");
 }
 
 }  // namespace sphark::detail

@@ -84,7 +84,7 @@ bool erk_table_has_embedding(const std::string& name) {
 std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                       const Real* y0) {
   validate_common(system, opts);
-  if (opts.method == "leapfrog") {
+  if (opts.method == "leapfrog" || opts.method == "leapfrog-rev") {
     validate_leapfrog(system, opts, t0, y0);
     return detail::make_leapfrog_stepper(system, opts, t0, y0);
   }
@@ -97,7 +97,7 @@ std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& o
     return detail::make_imex_stepper(system, opts, t0, y0);
   }
   if (!is_erk(opts.method))
-    bad("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\" or \"leapfrog\"");
+    bad("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
   if (opts.fixed_dt <= 0 && !erk_table_has_embedding(opts.method))
     bad("method", opts.method, "table has no embedding: adaptive steps impossible, set fixed_dt");
   return detail::make_erk_stepper(system, opts, t0, y0);
@@ -105,8 +105,8 @@ std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& o
 
 std::string describe(const StepperOptions& o) {
   std::ostringstream s;
-  if (o.method == "leapfrog") {
-    s << "leapfrog KDK, ";
+  if (o.method == "leapfrog" || o.method == "leapfrog-rev") {
+    s << (o.method == "leapfrog" ? "leapfrog KDK, " : "leapfrog-rev (KDK, q drifted with x by the midpoint rule), ");
     if (o.fixed_dt > 0) s << "fixed dt=" << o.fixed_dt;
     else s << "dt=" << o.cfl_safety << " x max_stable_dt";
     if (o.fixed_dt <= 0 && o.max_dt > 0) s << ", max_dt=" << o.max_dt;

@@ -4,11 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 
 #include "sphark/scenes/water_drop.hpp"
 #include "sphark/state/state_layout.hpp"
-#include "sphark/study/study_scene.hpp"
+#include "study_scene_factories.hpp"
 
 namespace sphark {
 namespace {
@@ -91,15 +90,10 @@ class DropScene final : public StudyScene {
 
 }  // namespace
 
-std::vector<std::string> study_scene_names() { return {"drop"}; }
-
-std::unique_ptr<StudyScene> make_study_scene(const std::string& name, const StudySceneOptions& options) {
-  if (options.spacing < 0 || !std::isfinite(options.spacing))
-    throw std::invalid_argument("spacing=" + std::to_string(options.spacing) + ": must be positive");
-  if (options.t_end < 0 || !std::isfinite(options.t_end))
-    throw std::invalid_argument("t_end=" + std::to_string(options.t_end) + ": must be positive");
-  if (name == "drop") return std::make_unique<DropScene>(options);
-  throw std::invalid_argument("scene=" + name + ": unknown (known: drop)");
+namespace detail {
+std::unique_ptr<StudyScene> make_drop_study_scene(const StudySceneOptions& options) {
+  return std::make_unique<DropScene>(options);
 }
+}  // namespace detail
 
 }  // namespace sphark

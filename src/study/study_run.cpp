@@ -96,11 +96,13 @@ StudyErrors study_errors(const StudyScene& scene, const StudyResult& run, const 
   StudyErrors e;
   const Real nan = std::numeric_limits<Real>::quiet_NaN();
   if (run.states.empty()) return {nan, nan, nan};
+  // max that propagates NaN (a scene without an exact solution or without positions)
+  const auto take = [](Real& m, Real v) { m = std::isnan(v) || std::isnan(m) ? std::numeric_limits<Real>::quiet_NaN() : std::max(m, v); };
   for (std::size_t k = 0; k < run.states.size(); ++k) {
-    e.exact = std::max(e.exact, scene.exact_error(run.times[k], run.states[k].data()));
+    take(e.exact, scene.exact_error(run.times[k], run.states[k].data()));
     if (k < reference.states.size()) {
-      e.time = std::max(e.time, scene.time_error(run.states[k].data(), reference.states[k].data()));
-      e.position = std::max(e.position, scene.position_error(run.states[k].data(), reference.states[k].data()));
+      take(e.time, scene.time_error(run.states[k].data(), reference.states[k].data()));
+      take(e.position, scene.position_error(run.states[k].data(), reference.states[k].data()));
     }
   }
   return e;
