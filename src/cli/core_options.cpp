@@ -35,6 +35,7 @@ std::vector<std::string> core_stepper_names() {
   std::vector<std::string> names = erk_table_names();
   names.push_back("ark-imex");
   names.push_back("leapfrog");
+  names.push_back("leapfrog-rev");
   return names;
 }
 

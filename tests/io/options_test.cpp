@@ -212,10 +212,11 @@ TEST(Options, CommaSeparatedLists) {
 TEST(CoreOptions, StepperNamesAndMapping) {
   const auto names = core_stepper_names();
   const auto erk = erk_table_names();
-  ASSERT_EQ(names.size(), erk.size() + 2);
+  ASSERT_EQ(names.size(), erk.size() + 3);
   EXPECT_TRUE(std::equal(erk.begin(), erk.end(), names.begin()));
   EXPECT_EQ(names[erk.size()], "ark-imex");
   EXPECT_EQ(names[erk.size() + 1], "leapfrog");
+  EXPECT_EQ(names[erk.size() + 2], "leapfrog-rev");
   // The default --stepper is StepperOptions' default method, and a valid name.
   CoreOptions o;
   EXPECT_EQ(o.stepper, StepperOptions{}.method);

@@ -104,7 +104,7 @@ class OptionParser {
 struct CoreOptions {
   std::filesystem::path out = "out";  // output directory
   Real t_end = 1;                     // end time
-  std::string stepper = "ARKODE_DORMAND_PRINCE_7_4_5";  // ERK table | ark-imex | leapfrog
+  std::string stepper = "ARKODE_DORMAND_PRINCE_7_4_5";  // ERK table | ark-imex | leapfrog[-rev]
   Real rtol = 1e-6;                   // adaptive-step relative tolerance
   Real atol = 1e-9;                   // adaptive-step absolute tolerance
   Real dt = 0;                        // fixed step; 0 = adaptive
@@ -121,7 +121,8 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
 // The same with core_stepper_names().
 void add_core_options(OptionParser& p, CoreOptions& o);
 
-// Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog".
+// Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog",
+// "leapfrog-rev".
 std::vector<std::string> core_stepper_names();
 
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt.
