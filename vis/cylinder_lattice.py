@@ -71,8 +71,8 @@ def rel_rms(a, b):
     return float(np.sqrt(np.mean((a[m] - b[m]) ** 2)) / np.sqrt(np.mean(0.5 * (a[m] ** 2 + b[m] ** 2))))
 
 
-def fields(out, m):
-    files = sorted(glob.glob(os.path.join(out, m, "fields_*.csv")))
+def fields(out, m, count):
+    files = sorted(glob.glob(os.path.join(out, m, "fields_*.csv")))[:count]
     if not files:
         raise SystemExit(f"cylinder_lattice.py: no {out}/{m}/fields_*.csv")
     frames = [read_frame(p) for p in files]
@@ -83,7 +83,9 @@ def fields(out, m):
 
 
 def fig9(out, maps):
-    res = {m: fields(out, m) for m in maps}
+    # the frames both runs have (a run still going, or stopped early, has fewer)
+    count = min(len(glob.glob(os.path.join(out, m, "fields_*.csv"))) for m in maps)
+    res = {m: fields(out, m, count) for m in maps}
     lines = []
     for kind, idx in (("final", 2), ("mean_last_2", 3)):
         fig, ax = plt.subplots(figsize=(6.4, 5.6))

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sphark/scenes/cylinder_lattice_study.hpp"
 #include "sphark/scenes/water_drop.hpp"
 #include "sphark/state/state_layout.hpp"
 #include "sphark/study/study_scene.hpp"
@@ -91,7 +92,7 @@ class DropScene final : public StudyScene {
 
 }  // namespace
 
-std::vector<std::string> study_scene_names() { return {"drop"}; }
+std::vector<std::string> study_scene_names() { return {"drop", "lattice"}; }
 
 std::unique_ptr<StudyScene> make_study_scene(const std::string& name, const StudySceneOptions& options) {
   if (options.spacing < 0 || !std::isfinite(options.spacing))
@@ -99,7 +100,8 @@ std::unique_ptr<StudyScene> make_study_scene(const std::string& name, const Stud
   if (options.t_end < 0 || !std::isfinite(options.t_end))
     throw std::invalid_argument("t_end=" + std::to_string(options.t_end) + ": must be positive");
   if (name == "drop") return std::make_unique<DropScene>(options);
-  throw std::invalid_argument("scene=" + name + ": unknown (known: drop)");
+  if (name == "lattice") return make_lattice_study_scene(options);
+  throw std::invalid_argument("scene=" + name + ": unknown (known: drop, lattice)");
 }
 
 }  // namespace sphark

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "lattice_helpers.hpp"
+#include "sphark/study/study_scene.hpp"
 
 namespace sphark {
 namespace {
@@ -140,5 +141,24 @@ TEST(LatticeRun, EnsembleIsDeterministicAndIndependentOfThreadCount) {
   EXPECT_EQ(one[3].rhs_calls, one[5].rhs_calls);
 }
 
+}  // namespace
+}  // namespace sphark
+
+namespace sphark {
+namespace {
+TEST(LatticeStudyScene, BuildsAndIntegratesOneOutputInterval) {
+  const auto scene = make_study_scene("lattice", {0, 0.05, 2});
+  EXPECT_EQ(scene->name(), "lattice");
+  EXPECT_GT(scene->cfl_unit(), 0);
+  auto problem = scene->build();
+  std::vector<Real> y = problem->y0();
+  StepperOptions so = lattice_default_stepper();
+  auto st = make_stepper(problem->system(), so, 0, y.data());
+  Real t = 0;
+  ASSERT_EQ(st->advance(scene->output_times()[0], y.data(), t), AdvanceStatus::Reached);
+  EXPECT_EQ(scene->time_error(y.data(), y.data()), 0);
+  EXPECT_GT(scene->time_error(y.data(), problem->y0().data()), 0);  // driven from rest
+  EXPECT_TRUE(std::isfinite(problem->energy(t, y.data())));
+}
 }  // namespace
 }  // namespace sphark

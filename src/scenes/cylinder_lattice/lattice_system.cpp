@@ -61,7 +61,7 @@ int LatticeSystem::solve_densities(std::size_t total) {
   Real h_guess = 0;
   for (std::size_t i = 0; i < total; ++i) h_guess = std::max(h_guess, h_[i]);
   const Real r_cap = 0.999 * p_.half_box;  // the minimum image needs 2 r < box length
-  Real r_build = std::min(1.25 * K::support * h_guess, r_cap);
+  Real r_build = std::min(1.1 * K::support * h_guess, r_cap);
   for (int attempt = 0; attempt < kMaxRetries; ++attempt) {
     search_.build(xall_.data(), total, r_build);
     const DensitySolveStats st = solve_density<2, K>(search_, xall_.data(), mass_.data(), total, p_.eta, p_.h_tol,
@@ -75,7 +75,7 @@ int LatticeSystem::solve_densities(std::size_t total) {
       error_ = "support radius 2h exceeds half the box (h = " + std::to_string(st.h_max) + ")";
       return 1;
     }
-    r_build = std::min(1.25 * K::support * st.h_max, r_cap);
+    r_build = std::min(1.1 * K::support * st.h_max, r_cap);
   }
   error_ = "h-rho solve: neighbour radius did not settle";
   return 1;
