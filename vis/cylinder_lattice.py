@@ -2,7 +2,8 @@
 """Charts of the cylinder-lattice scene (seed 004, §8).
 
   cylinder_lattice.py fig9 OUT [maps...]   Fig. 9: v_y contours of the medium runs, OUT/<map>/fields_*.csv
-  cylinder_lattice.py fig10 OUT            Fig. 10: mean t_max vs v0 per map, OUT/ensemble.csv
+  cylinder_lattice.py fig10 OUT            Fig. 10: mean t_max vs v0 per map, OUT/ensemble.csv (+ table)
+  cylinder_lattice.py table OUT            OUT/ensemble_table.md: reach t_final, mean t_max, reasons
 
 Fig. 9: particle v_y is interpolated onto a 200 x 200 grid by the normalised SPH sum
 f(x) = sum_b V_b f_b W(x - x_b, h_b) / sum_b V_b W(x - x_b, h_b) (Wendland C4, V_b = 1/rho_b up to the
@@ -155,10 +156,37 @@ def fig10(out):
     print(name)
 
 
+def table(out):
+    """Markdown table: per v0 and map, runs reaching t_final, mean +- std of t_max, reasons."""
+    rows = list(csv.DictReader(open(os.path.join(out, "ensemble.csv"))))
+    maps = sorted({r["map"] for r in rows}, key=lambda m: m != "mirror")
+    v0s = sorted({float(r["v0"]) for r in rows})
+    head = "| v0 | " + " | ".join(f"{m}: reach t_end | {m}: mean t_max (std) | {m}: pen / acc / fail" for m in maps) + " |"
+    lines = [head, "|" + "---|" * (1 + 3 * len(maps))]
+    for v in v0s:
+        cells = [f"{v:.2f}"]
+        for m in maps:
+            sel = [r for r in rows if r["map"] == m and float(r["v0"]) == v]
+            t = np.array([float(r["t_max"]) for r in sel])
+            n = len(sel)
+            reach = sum(r["reason"] == "t_end" for r in sel)
+            pen = sum(r["reason"] == "penetration" for r in sel)
+            acc = sum(r["reason"] == "accumulation" for r in sel)
+            cells += [f"{reach}/{n}", f"{t.mean():.2f} ({t.std():.2f})", f"{pen} / {acc} / {n - reach - pen - acc}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    text = "\n".join(lines) + "\n"
+    with open(os.path.join(out, "ensemble_table.md"), "w") as f:
+        f.write(text)
+    print(text)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) < 3 or sys.argv[1] not in ("fig9", "fig10"):
+    if len(sys.argv) < 3 or sys.argv[1] not in ("fig9", "fig10", "table"):
         raise SystemExit(__doc__)
     if sys.argv[1] == "fig9":
         fig9(sys.argv[2], sys.argv[3:] or ["mirror", "nonlinear"])
-    else:
+    elif sys.argv[1] == "fig10":
         fig10(sys.argv[2])
+        table(sys.argv[2])
+    else:
+        table(sys.argv[2])

@@ -20,10 +20,7 @@ struct WallDensity {
 WallDensity wall_density(GhostMap relax_map, GhostMap map, std::size_t n) {
   const LatticeParams p = lattice_params(lattice_test::undriven(map), n);
   std::vector<Real> x = random_fluid_positions(p, n, 7, 0.7);
-  PeriodicBox<2> box;
-  box.lo = Vec<2>::Constant(-p.half_box);
-  box.hi = Vec<2>::Constant(p.half_box);
-  box.periodic = {true, true};
+  const PeriodicBox<2> box = lattice_box(p);
   RelaxOptions ro;
   ro.h_over_dx = p.eta;
   ro.max_iterations = 400;

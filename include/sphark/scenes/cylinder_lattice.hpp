@@ -49,8 +49,10 @@ struct LatticeParams {
   Real h_tol = 1e-7;      // relative tolerance of the h-rho Newton solve
 };
 
-// The uniform-lattice spacing and h of n particles in the fluid area (box minus disc).
+// The uniform-lattice spacing of n particles in the fluid area (box minus disc).
 Real lattice_spacing(const LatticeParams& p, std::size_t n);
+// The box [-half_box, half_box]^2, periodic along x and y.
+PeriodicBox<2> lattice_box(const LatticeParams& p);
 
 class LatticeSystem final : public OdeSystem {
  public:

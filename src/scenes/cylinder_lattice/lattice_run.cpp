@@ -44,10 +44,7 @@ LatticeParams lattice_params(LatticeParams p, std::size_t n) {
 std::vector<Real> random_fluid_positions(const LatticeParams& p, std::size_t n, unsigned seed, Real min_separation) {
   const Real dx = lattice_spacing(p, n), d_min2 = min_separation * dx * min_separation * dx;
   const Real L = 2 * p.half_box, r_min = p.radius + 0.5 * dx;
-  PeriodicBox<2> box;
-  box.lo = Vec<2>::Constant(-p.half_box);
-  box.hi = Vec<2>::Constant(p.half_box);
-  box.periodic = {true, true};
+  const PeriodicBox<2> box = lattice_box(p);
   // Cell grid of side >= d_min for the overlap test.
   const int cells = std::max(1, static_cast<int>(L / (min_separation * dx)));
   const Real cell = L / cells;
@@ -87,10 +84,7 @@ std::vector<Real> initial_positions(const LatticeRunConfig& cfg) {
   const LatticeParams p = lattice_params(cfg.params, cfg.particles);
   std::vector<Real> x = random_fluid_positions(p, cfg.particles, cfg.seed, cfg.min_separation);
   if (cfg.relax_iterations <= 0) return x;
-  PeriodicBox<2> box;
-  box.lo = Vec<2>::Constant(-p.half_box);
-  box.hi = Vec<2>::Constant(p.half_box);
-  box.periodic = {true, true};
+  const PeriodicBox<2> box = lattice_box(p);
   RelaxOptions ro;
   ro.h_over_dx = p.eta;
   ro.max_iterations = cfg.relax_iterations;

@@ -22,6 +22,14 @@ Real lattice_spacing(const LatticeParams& p, std::size_t n) {
   return std::sqrt((L * L - kPi * p.radius * p.radius) / static_cast<Real>(n));
 }
 
+PeriodicBox<2> lattice_box(const LatticeParams& p) {
+  PeriodicBox<2> box;
+  box.lo = Vec<2>::Constant(-p.half_box);
+  box.hi = Vec<2>::Constant(p.half_box);
+  box.periodic = {true, true};
+  return box;
+}
+
 LatticeSystem::LatticeSystem(std::size_t particles, LatticeParams params)
     : p_(params), n_(particles), layout_(particles), search_(std::nullopt) {
   if (particles == 0) throw std::invalid_argument("LatticeSystem: no particles");
@@ -29,9 +37,7 @@ LatticeSystem::LatticeSystem(std::size_t particles, LatticeParams params)
     throw std::invalid_argument("LatticeSystem: mass, rho0, sound_speed, eta and radius must be positive");
   if (!(p_.radius < p_.half_box)) throw std::invalid_argument("LatticeSystem: the obstacle must fit in the box");
   layout_.add(Field::Position, 2).add(Field::Velocity, 2);
-  box_.lo = Vec<2>::Constant(-p_.half_box);
-  box_.hi = Vec<2>::Constant(p_.half_box);
-  box_.periodic = {true, true};
+  box_ = lattice_box(p_);
   search_ = NeighbourSearch<2>(box_);
   wall_ = Cylinder<2>{Vec<2>::Zero(), p_.radius, FluidSide::Outside};
   // At most one ghost per particle: every buffer sized for 2n once, so rhs() never grows them.
