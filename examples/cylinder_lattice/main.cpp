@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   s.core.output_every = 0;
   s.core.threads = 0;
   LatticeParams& p = s.run.params;
-  std::string kase = "single", map = "both", bc = "free-slip";
+  std::string kase = "single", map = "default", bc = "free-slip";
   long particles = 0, seed = 1;
   s.v0s = {0.05, 0.10, 0.15, 0.20, 0.25, 0.30, 0.35, 0.40, 0.45, 0.50, 0.55, 0.60, 0.65, 0.70, 0.75};
 
@@ -28,8 +28,10 @@ int main(int argc, char** argv) {
   add_core_options(op, s.core);
   op.add("--case", &kase, "single run, medium resolution (§8.1, Fig. 9) or low-resolution ensemble (§8.2, Fig. 10)",
          OneOf{{"single", "medium", "ensemble"}});
-  op.add("--map", &map, "ghost map: mirror (Psi0, eq. 15), nonlinear (Psi, eq. 21) or both (single: not both)",
-         OneOf{{"mirror", "nonlinear", "both"}});
+  op.add("--map", &map,
+         "ghost map: mirror (Psi0, eq. 15), nonlinear (Psi, eq. 21) or both (not with single); default: nonlinear "
+         "for single, both otherwise",
+         OneOf{{"mirror", "nonlinear", "both", "default"}});
   op.add("--bc", &bc, "velocity condition of the ghosts", OneOf{{"free-slip", "no-slip"}});
   op.add("--particles", &particles, "real particles (0: 100 for single/ensemble, 10000 for medium)", Range{0, 1e7});
   op.add("--v0", &p.v0, "driving velocity v0 of eq. (36) (single, medium)", NonNegative{});
@@ -47,6 +49,8 @@ int main(int argc, char** argv) {
   op.add("--min-separation", &s.run.min_separation, "random start: minimum pair distance / dx", Range{0, 0.8});
   op.parse_or_exit(argc, argv);
 
+  if (map == "default") map = kase == "single" ? "nonlinear" : "both";
+  if (s.core.stepper == "ark-imex") op.fail("--stepper", "ark-imex: the lattice system has no stiff part (use an ERK table or leapfrog)");
   if (kase == "single" && map == "both") op.fail("--map", "'both' is not allowed with --case single (mirror or nonlinear)");
   if (s.core.output_every > s.core.t_end) op.fail("--output-every", "must not exceed --t-end");
   s.maps = map == "both" ? std::vector<std::string>{"mirror", "nonlinear"} : std::vector<std::string>{map};
