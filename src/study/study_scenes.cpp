@@ -2,11 +2,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sphark/scenes/cylinder_lattice_study.hpp"
 #include "study_scene_factories.hpp"
 
 namespace sphark {
 
-std::vector<std::string> study_scene_names() { return {"drop", "disc", "disc_damped", "orszag_tang"}; }
+std::vector<std::string> study_scene_names() { return {"drop", "disc", "disc_damped", "orszag_tang", "lattice"}; }
 
 std::unique_ptr<StudyScene> make_study_scene(const std::string& name, const StudySceneOptions& options) {
   if (options.spacing < 0 || !std::isfinite(options.spacing))
@@ -17,7 +18,8 @@ std::unique_ptr<StudyScene> make_study_scene(const std::string& name, const Stud
   if (name == "disc") return detail::make_disc_study_scene(options, 0.0);
   if (name == "disc_damped") return detail::make_disc_study_scene(options, 0.3);
   if (name == "orszag_tang") return detail::make_orszag_tang_study_scene(options);
-  throw std::invalid_argument("scene=" + name + ": unknown (known: drop, disc, disc_damped, orszag_tang)");
+  if (name == "lattice") return make_lattice_study_scene(options);
+  throw std::invalid_argument("scene=" + name + ": unknown (known: drop, disc, disc_damped, orszag_tang, lattice)");
 }
 
 }  // namespace sphark

@@ -1,0 +1,28 @@
+#pragma once
+// The three cases of the cylinder-lattice example (seed 004, §8): single run, medium resolution
+// (§8.1, Fig. 9) and the low-resolution ensemble (§8.2, Fig. 10).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sphark/cli/options.hpp"
+#include "sphark/scenes/cylinder_lattice_run.hpp"
+
+namespace cylinder_lattice {
+
+struct Settings {
+  sphark::CoreOptions core;
+  sphark::LatticeRunConfig run;     // params (map, v0, ...), particles, seed, t_end, stepper
+  std::vector<std::string> maps;    // "mirror", "nonlinear"
+  std::vector<sphark::Real> v0s;    // ensemble
+  int seeds = 20;                   // ensemble: seeds 1..seeds
+};
+
+sphark::GhostMap parse_map(const std::string& name);
+
+// Each returns the process exit status (0 ok, 1 error, 3 a medium/single run did not reach t_end).
+int run_single(const Settings& s);
+int run_medium(const Settings& s);
+int run_ensemble_case(const Settings& s);
+
+}  // namespace cylinder_lattice

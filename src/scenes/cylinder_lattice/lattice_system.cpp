@@ -1,0 +1,228 @@
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <stdexcept>
+
+#include "sphark/kernels/kernels.hpp"
+#include "sphark/operators/artificial_viscosity.hpp"
+#include "sphark/operators/density_summation.hpp"
+#include "sphark/operators/tait_eos.hpp"
+#include "sphark/scenes/cylinder_lattice.hpp"
+
+namespace sphark {
+
+namespace {
+using K = WendlandC4<2>;
+constexpr int kMaxRetries = 4;
+}  // namespace
+
+Real lattice_spacing(const LatticeParams& p, std::size_t n) {
+  const Real L = 2 * p.half_box;
+  return std::sqrt((L * L - kPi * p.radius * p.radius) / static_cast<Real>(n));
+}
+
+PeriodicBox<2> lattice_box(const LatticeParams& p) {
+  PeriodicBox<2> box;
+  box.lo = Vec<2>::Constant(-p.half_box);
+  box.hi = Vec<2>::Constant(p.half_box);
+  box.periodic = {true, true};
+  return box;
+}
+
+LatticeSystem::LatticeSystem(std::size_t particles, LatticeParams params)
+    : p_(params), n_(particles), layout_(particles), search_(std::nullopt) {
+  if (particles == 0) throw std::invalid_argument("LatticeSystem: no particles");
+  if (!(p_.mass > 0) || !(p_.rho0 > 0) || !(p_.sound_speed > 0) || !(p_.eta > 0) || !(p_.radius > 0))
+    throw std::invalid_argument("LatticeSystem: mass, rho0, sound_speed, eta and radius must be positive");
+  if (!(p_.radius < p_.half_box)) throw std::invalid_argument("LatticeSystem: the obstacle must fit in the box");
+  layout_.add(Field::Position, 2).add(Field::Velocity, 2);
+  box_ = lattice_box(p_);
+  search_ = NeighbourSearch<2>(box_);
+  wall_ = Cylinder<2>{Vec<2>::Zero(), p_.radius, FluidSide::Outside};
+  // At most one ghost per particle: every buffer sized for 2n once, so rhs() never grows them.
+  const std::size_t cap = 2 * n_;
+  ghosts_.reserve(n_);
+  xall_.assign(2 * cap, 0);
+  vall_.assign(2 * cap, 0);
+  mass_.assign(cap, p_.mass);
+  rho_.assign(cap, p_.rho0);
+  h_.assign(cap, p_.eta * std::sqrt(p_.mass / p_.rho0));  // eq. (5) at rho0: the first guess
+  omega_.assign(cap, 1);
+  pressure_.assign(cap, 0);
+  q_.assign(cap, 0);
+  x_prepared_.assign(2 * n_, 0);
+  ghost_h_.assign(n_, 0);
+  width_ = 1.25 * K::support * h_[0];
+}
+
+Real LatticeSystem::min_ghost_h() const {
+  Real m = kInfinity;
+  for (std::size_t g = 0; g < ghosts_.size(); ++g) m = std::min(m, ghost_h_[g]);
+  return m;
+}
+
+// seed 004 eq. (1) with h = eta (m/rho)^(1/D) (seed 000 eq. (5)), over real + ghost particles.
+int LatticeSystem::solve_densities(std::size_t total) {
+  Real h_guess = 0;
+  for (std::size_t i = 0; i < total; ++i) h_guess = std::max(h_guess, h_[i]);
+  const Real r_cap = 0.999 * p_.half_box;  // the minimum image needs 2 r < box length
+  Real r_build = std::min(1.1 * K::support * h_guess, r_cap);
+  for (int attempt = 0; attempt < kMaxRetries; ++attempt) {
+    search_.build(xall_.data(), total, r_build);
+    const DensitySolveStats st = solve_density<2, K>(search_, xall_.data(), mass_.data(), total, p_.eta, p_.h_tol,
+                                                     r_build / K::support, h_.data(), rho_.data(), omega_.data());
+    if (st.not_converged > 0) {
+      error_ = "h-rho solve did not converge for " + std::to_string(st.not_converged) + " particle(s)";
+      return 1;
+    }
+    if (st.outside_list == 0) return 0;
+    if (r_build >= r_cap) {
+      error_ = "support radius 2h exceeds half the box (h = " + std::to_string(st.h_max) + ")";
+      return 1;
+    }
+    r_build = std::min(1.1 * K::support * st.h_max, r_cap);
+  }
+  error_ = "h-rho solve: neighbour radius did not settle";
+  return 1;
+}
+
+int LatticeSystem::prepare(const Real* y) noexcept {
+  try {
+    const Real* x = y + layout_.offset(Field::Position);
+    const Real* v = y + layout_.offset(Field::Velocity);
+    for (std::size_t k = 0; k < layout_.size(); ++k)
+      if (!std::isfinite(y[k])) {
+        error_ = "non-finite state entry " + std::to_string(k);
+        return 1;
+      }
+    for (int attempt = 0; attempt < kMaxRetries; ++attempt) {
+      ghosts_.clear();
+      // seed 004 §2: ghosts of every particle within the layer, at Psi0(s) (mirror, eq. 15) or
+      // Psi(s) (eq. 21); particles beyond Psi's range get none (OnInvalid::Skip).
+      // The mirror map is defined for |s| <= R only: beyond, the reflected point passes the centre.
+      const Real width = p_.map == GhostMap::Mirror ? std::min(width_, p_.radius) : width_;
+      const GhostOptions opt{width, p_.map, p_.velocity, OnInvalid::Skip};
+      ghosts_.append(wall_, x, v, n_, opt, &box_);
+      const std::size_t g = ghosts_.size(), total = n_ + g;
+      std::copy(x, x + 2 * n_, xall_.begin());
+      std::copy(v, v + 2 * n_, vall_.begin());
+      std::copy(ghosts_.positions(), ghosts_.positions() + 2 * g, xall_.begin() + 2 * n_);
+      std::copy(ghosts_.velocities(), ghosts_.velocities() + 2 * g, vall_.begin() + 2 * n_);
+      for (std::size_t k = 0; k < g; ++k) h_[n_ + k] = h_[ghosts_.sources()[k]];  // first guess
+      if (int bad = solve_densities(total)) return bad;
+      const Real h_max = *std::max_element(h_.begin(), h_.begin() + n_);
+      const bool covered = K::support * h_max <= width_ || width < width_;
+      width_ = 1.15 * K::support * h_max;  // ghost layer as thick as the largest real support
+      if (!covered) continue;
+      // A ghost's own support radius (eq. 1 at its position) is kept for the accumulation event;
+      // the ghost then carries the fields of its inner particle (seed 004 §1-2: "the density,
+      // temperature and pressure fields of the ghost particle are set equal to their inner counterpart").
+      for (std::size_t k = 0; k < g; ++k) {
+        const std::size_t src = ghosts_.sources()[k];
+        ghost_h_[k] = h_[n_ + k];
+        rho_[n_ + k] = rho_[src];
+        h_[n_ + k] = h_[src];
+        omega_[n_ + k] = omega_[src];
+      }
+      h_min_ = *std::min_element(h_.begin(), h_.begin() + n_);
+      for (std::size_t i = 0; i < total; ++i) {
+        pressure_[i] = tait_pressure(rho_[i], p_.rho0, p_.sound_speed);  // seed 000, eq. (26)
+        q_[i] = pressure_[i] / (omega_[i] * rho_[i] * rho_[i]);
+      }
+      std::copy(x, x + 2 * n_, x_prepared_.begin());
+      prepared_ = true;
+      return 0;
+    }
+    error_ = "ghost layer width did not settle";
+    return 1;
+  } catch (const std::exception& e) {
+    error_ = std::string("LatticeSystem: ") + e.what();
+    return -1;
+  } catch (...) {
+    error_ = "LatticeSystem: unknown exception";
+    return -1;
+  }
+}
+
+int LatticeSystem::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
+  ++rhs_calls_;
+  if (int bad = prepare(y)) return bad;
+  const NeighbourList& nl = search_.list();
+  const Real m = p_.mass;
+  Real* dx = ydot + layout_.offset(Field::Position);
+  Real* dv = ydot + layout_.offset(Field::Velocity);
+  Real fx = 0, fy = 0, max_acc2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fx, fy) reduction(max : max_acc2)
+  for (std::size_t a = 0; a < n_; ++a) {
+    const Vec<2> va(vall_[2 * a], vall_[2 * a + 1]);
+    const Real ha = h_[a];
+    Vec<2> acc = Vec<2>::Zero(), wall = Vec<2>::Zero();
+    for (std::size_t k = nl.begin(a); k < nl.end(a); ++k) {
+      const std::size_t b = nl.indices[k];
+      const Real hb = h_[b];
+      const Vec<2> x_ab = search_.separation(xall_.data(), a, b);
+      const Real r = x_ab.norm();
+      if (r >= K::support * std::max(ha, hb)) continue;
+      const Vec<2> ga = K::f_over_r(r, ha) * x_ab, gb = K::f_over_r(r, hb) * x_ab;
+      // grad-h form of seed 000 eq. (27) (Price 2012, eq. 35): symmetric in (a, b)
+      Vec<2> term = -m * (q_[a] * ga + q_[b] * gb);
+      if (p_.alpha > 0) {
+        const Vec<2> v_ab = va - Vec<2>(vall_[2 * b], vall_[2 * b + 1]);
+        const Real c_ab = 0.5 * (tait_sound_speed(rho_[a], p_.rho0, p_.sound_speed) +
+                                 tait_sound_speed(rho_[b], p_.rho0, p_.sound_speed));
+        term += monaghan_viscosity_term<2>(m, p_.alpha, c_ab, 0.5 * (rho_[a] + rho_[b]), 0.5 * (ha + hb), x_ab, v_ab,
+                                           Vec<2>(0.5 * (ga + gb)));
+      }
+      acc += term;
+      if (b >= n_) wall += term;
+    }
+    if (p_.tau > 0) acc[0] += (p_.v0 - va[0]) / p_.tau;  // seed 004, eq. (36)
+    dx[2 * a] = va[0];
+    dx[2 * a + 1] = va[1];
+    dv[2 * a] = acc[0];
+    dv[2 * a + 1] = acc[1];
+    fx += m * wall[0];
+    fy += m * wall[1];
+    max_acc2 = std::max(max_acc2, acc.squaredNorm());
+  }
+  wall_force_ = Vec<2>(fx, fy);
+  max_accel_ = std::sqrt(max_acc2);
+  for (std::size_t k = 0; k < layout_.size(); ++k)
+    if (!std::isfinite(ydot[k])) {
+      error_ = "non-finite right-hand side entry " + std::to_string(k);
+      return 1;
+    }
+  return 0;
+}
+
+Real LatticeSystem::max_stable_dt(Real /*t*/, const Real* y) noexcept {
+  if (!prepared_ && prepare(y) != 0) return kInfinity;
+  const Real* v = y + layout_.offset(Field::Velocity);
+  Real vmax2 = 0, rho_max = 0;
+  for (std::size_t a = 0; a < n_; ++a) vmax2 = std::max(vmax2, v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+  for (std::size_t i = 0; i < n_ + ghosts_.size(); ++i) rho_max = std::max(rho_max, rho_[i]);
+  const Real c = tait_sound_speed(rho_max, p_.rho0, p_.sound_speed);
+  // Courant condition with the viscous signal speed (Monaghan 1992) and the force condition.
+  Real dt = p_.cfl * h_min_ / (c + std::sqrt(vmax2) + 1.2 * p_.alpha * c);
+  if (max_accel_ > 0) dt = std::min(dt, p_.cfl * std::sqrt(h_min_ / max_accel_));
+  return dt;
+}
+
+int LatticeSystem::roots(Real /*t*/, const Real* y, Real* g) noexcept {
+  const Real* x = y + layout_.offset(Field::Position);
+  Real gap = kInfinity;  // penetration: min_a |x_a - c| - R
+  for (std::size_t a = 0; a < n_; ++a)
+    gap = std::min(gap, box_.minimum_image(Vec<2>(x[2 * a], x[2 * a + 1])).norm() - p_.radius);
+  g[0] = gap;
+  g[1] = 1;
+  if (!(p_.h_ref > 0)) return 0;
+  const bool same = prepared_ && std::memcmp(x, x_prepared_.data(), 2 * n_ * sizeof(Real)) == 0;
+  if (!same)
+    if (int bad = prepare(y)) return bad < 0 ? bad : -1;
+  const Real hg = ghosts_.size() > 0 ? min_ghost_h() : p_.h_ref;
+  g[1] = hg / p_.h_ref - p_.accumulation;
+  return 0;
+}
+
+}  // namespace sphark
