@@ -8,6 +8,7 @@
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/stepper_options.hpp"
 #include "sphark/run/checkpoint.hpp"
+#include "sphark/run/time_loop.hpp"
 #include "sphark/scenes/water_drop.hpp"
 
 namespace sphark {
@@ -42,6 +43,7 @@ struct DropRunSummary {
   Real kinetic_energy_end = 0;
   Real total_energy_drift = 0;       // (E(t_end) - E(0)) / E(0)
   long neighbour_builds = 0;
+  TimeLoopResult loop;               // the run driver's outcome (report_time_loop_end)
 };
 
 // Runs to core.t_end (from settings.restart if set). Writes <out>/diagnostics.csv,

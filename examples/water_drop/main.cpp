@@ -5,13 +5,13 @@
 #include <exception>
 #include <iostream>
 #include <optional>
-#include <sstream>
 
 #include "drop_charts.hpp"
 #include "drop_run.hpp"
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/run/restart.hpp"
+#include "sphark/core/profile.hpp"
 #include "sphark/run/signals.hpp"
 
 using namespace sphark;
@@ -34,38 +34,12 @@ void print_summary(const std::string& label, const DropRunSummary& s) {
   if (!s.ok) std::printf("          reason: %s\n", s.failure.c_str());
 }
 
-// --restart FILE: the checkpoint, loaded before anything is parsed or written (its stored
-// options come first, the ones given now override them). Bad file: one line, exit 2.
-std::optional<Checkpoint> load_restart(int argc, char** argv) {
-  const auto file = find_option_value(argc, argv, "--restart");
-  if (!file) return std::nullopt;
-  if (file->empty()) exit_usage_error("water_drop", "--restart", "missing value (expected a checkpoint FILE)");
-  try {
-    Checkpoint c = load_checkpoint(*file);
-    if (c.program != "water_drop")
-      exit_usage_error("water_drop", "--restart", "'" + *file + "' was written by " + c.program + ", not water_drop");
-    return c;
-  } catch (const std::exception& e) {
-    exit_usage_error("water_drop", "--restart", e.what());
-  }
-}
-
-// The first scene parameter that differs between the checkpoint and this run ("" if none).
-std::string scene_difference(const std::string& stored, const std::string& now) {
-  std::istringstream a(stored), b(now);
-  std::string la, lb;
-  while (std::getline(a, la) && std::getline(b, lb))
-    if (la != lb) return "checkpoint has " + la + ", this run " + lb;
-  return {};
-}
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::optional<Checkpoint> restart = load_restart(argc, argv);
+  const std::optional<Checkpoint> restart = load_restart_option(argc, argv, "water_drop");
   // Options of this run (stored in its checkpoints): a restart's stored ones, then these.
-  std::vector<std::string> args = arguments(argc, argv);
-  if (restart) args = without_option(restart_arguments("water_drop", restart->argv, args), "--restart");
-  else args.insert(args.begin(), "water_drop");
+  const std::vector<std::string> args = run_arguments("water_drop", argc, argv, restart ? &*restart : nullptr);
   DropRunSettings base;
   base.core.out = "out/water_drop";
   base.core.t_end = 0.1;
@@ -124,15 +98,11 @@ int main(int argc, char** argv) {
     runs = {{label, label == "cleaned"}};
     WaterDropConfig c = sc;
     c.cleaning = label == "cleaned";
-    if (const std::string d = scene_difference(restart->text("scene"), scene_text(c)); !d.empty())
-      p.fail("--restart", "scene parameters cannot change on restart: " + d);
-    if (!(restart->t < base.core.t_end * (1 - 1e-12))) {
-      char why[128];
-      std::snprintf(why, sizeof why, "%.9g is not after the checkpoint time %.9g", base.core.t_end, restart->t);
-      p.fail("--t-end", why);
-    }
+    check_restart_text(p, *restart, "scene", scene_text(c), "scene parameters");
+    check_restart_t_end(p, *restart, base.core.t_end);
   }
   apply_thread_count(base.core.threads);
+  run_profile().enable(base.core.profile);
   prepare_output_dir(base.core.out, p.program());
   install_stop_handlers();
   base.argv.assign(args.begin() + 1, args.end());
@@ -152,16 +122,10 @@ int main(int argc, char** argv) {
       return 1;
     }
     const DropRunSummary& r = results.back().second;
-    if (r.stopped_by_signal) {  // orderly stop: checkpoint written, no further runs or pictures
-      std::fprintf(stderr, "water_drop: %s run stopped by signal %d at t=%.9g; checkpoint %s (continue with --restart %s)\n",
-                   label.c_str(), r.stopped_by_signal, r.t_reached, r.checkpoint.c_str(), r.checkpoint.c_str());
-      return 128 + r.stopped_by_signal;
-    }
-    if (!r.ok) {
-      std::fprintf(stderr, "water_drop: %s run FAILED at t=%.9g: %s\nwater_drop: last good state: %s and %s\n",
-                   label.c_str(), r.t_reached, r.failure.c_str(), r.last_frame.c_str(), r.checkpoint.c_str());
-      print_summary(label, r);
-      return 3;
+    // a stop signal (checkpoint written) or a failure (last good state written): no further runs
+    if (const int code = report_time_loop_end(r.loop); code != 0) {
+      if (!r.ok) print_summary(label, r);
+      return code;
     }
   }
   std::printf("\nwater drop, %s, rtol %g, atol %g, dt %g, t_end %g\n", base.core.stepper.c_str(), base.core.rtol,

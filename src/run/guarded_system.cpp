@@ -67,8 +67,8 @@ int GuardedSystem::rhs(Real t, const Real* y, Real* ydot) {
   }
   const int r = inner_.rhs(t, y, ydot);
   if (r != 0) return r;
-  if (t >= inject_from_ && layout_.has(Field::Velocity))
-    ydot[layout_.offset(Field::Velocity)] = std::numeric_limits<Real>::quiet_NaN();
+  if (t >= inject_from_)  // particle 0's velocity derivative (or the first state entry)
+    ydot[layout_.has(Field::Velocity) ? layout_.offset(Field::Velocity) : 0] = std::numeric_limits<Real>::quiet_NaN();
   return check(t, ydot, size(), "time derivative");
 }
 

@@ -26,7 +26,8 @@ class GuardedSystem final : public OdeSystem {
  public:
   GuardedSystem(OdeSystem& inner, const StateLayout& layout) : inner_(inner), layout_(layout) {}
 
-  // From time t on, rhs() puts a NaN into the velocity derivative of particle 0 (testing aid).
+  // From time t on, rhs() puts a NaN into the velocity derivative of particle 0, or into the
+  // first entry of the derivative if there is no velocity field (testing aid).
   void inject_nan_from(Real t) { inject_from_ = t; }
 
   std::size_t size() const override { return inner_.size(); }
