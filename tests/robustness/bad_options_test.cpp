@@ -200,3 +200,23 @@ TEST(BadOptions, OrszagTangRejectsEveryClassWithOneLineAndNoFiles) {
   };
   for (const auto& c : cases) expect_rejected(bin, c, dir, out);
 }
+
+TEST(BadOptions, StepperStudyRejectsWithOneLineAndNoFiles) {
+  const auto bin = example_binary("stepper_study");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  const std::vector<BadInput> cases = {
+      {{"--scene", "cube"}, "--scene: bad value 'cube'"},                              // unknown scene
+      {{"--methods", "RK99"}, "--methods: unknown method 'RK99'"},                     // unknown stepper
+      {{"--methods", "KNOTH_WOLKE_3_3"}, "has no embedding"},
+      {{"--rtols", "1e-3,0"}, "--rtols: bad value '1e-3,0'"},                          // non-positive tolerance
+      {{"--rtols", "1e-3,nan"}, "--rtols: bad value '1e-3,nan'"},                      // NaN
+      {{"--fixed-cfls", "-0.1"}, "--fixed-cfls: bad value '-0.1'"},
+      {{"--t-end", "-1"}, "--t-end: bad value '-1'"},                                  // negative time
+      {{"--spacing", "inf"}, "--spacing: bad value 'inf'"},                            // inf size
+      {{"--max-rhs", "0"}, "--max-rhs: bad value '0'"},
+      {{"--out", "/proc/sphark_out"}, "--out: cannot create"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}

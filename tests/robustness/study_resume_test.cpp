@@ -1,0 +1,66 @@
+// stepper_study's matrix survives an interruption: SIGINT stops between cases with
+// work_precision.csv complete (the rows done so far, written atomically), and a rerun with
+// --resume keeps those rows byte for byte and runs only the missing cases.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "../support/temp_dir.hpp"
+#include "run_example.hpp"
+
+using namespace sphark::test;
+namespace fs = std::filesystem;
+
+namespace {
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+}  // namespace
+
+TEST(StudyResume, SigintKeepsCompleteRowsAndResumeRunsOnlyTheMissingCases) {
+  const fs::path bin = example_binary("stepper_study");
+  if (!fs::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const fs::path out = dir.path() / "study";
+  // 6 leapfrog cases, each twice the work of the one before
+  const std::vector<std::string> args = {"--what", "matrix", "--spacing", "0.2", "--t-end", "0.025", "--outputs", "5",
+                                         "--methods", "BOGACKI_SHAMPINE_4_2_3", "--modes", "capped", "--rtols", "1e-3",
+                                         "--fixed-methods", "none", "--leapfrog-cfls",
+                                         "0.4,0.2,0.1,0.05,0.025,0.0125", "--reference-rtol", "1e-8",
+                                         "--no-render", "--threads", "1", "--out", out.string()};
+  const Spawned s = spawn(bin, args, dir.path());
+  const fs::path csv = out / "work_precision.csv";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (lines(slurp(csv)).size() < 3 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(s.pid, SIGINT);
+  const Finished f = wait_for(s);
+  EXPECT_EQ(f.exit_code, 128 + SIGINT) << f.err;
+  EXPECT_NE(f.err.find("stopped by signal 2"), std::string::npos) << f.err;
+  EXPECT_NE(f.err.find("--resume"), std::string::npos) << f.err;
+  const std::string before = slurp(csv);
+  const std::vector<std::string> rows_before = lines(before);
+  ASSERT_GE(rows_before.size(), 3u);  // header + at least 2 cases
+  EXPECT_LT(rows_before.size(), 8u) << "the signal came after the last case";
+  EXPECT_EQ(before.back(), '\n');
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+  std::printf("interrupted with %zu of 7 cases in work_precision.csv\n", rows_before.size() - 1);
+
+  std::vector<std::string> resume = args;
+  resume.push_back("--resume");
+  const Finished r = run(bin, resume, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("--resume: " + std::to_string(rows_before.size() - 1) + " rows"), std::string::npos) << r.out;
+  const std::vector<std::string> rows_after = lines(slurp(csv));
+  ASSERT_EQ(rows_after.size(), 8u);  // header + 1 adaptive + 6 leapfrog cases, each once
+  for (std::size_t k = 0; k < rows_before.size(); ++k) EXPECT_EQ(rows_after[k], rows_before[k]);
+  // only the missing cases ran again
+  std::size_t rerun = 0;
+  for (std::size_t pos = 0; (pos = r.out.find("\nleapfrog ", pos)) != std::string::npos; ++pos) ++rerun;
+  EXPECT_EQ(rerun, rows_after.size() - rows_before.size());
+}
