@@ -39,7 +39,8 @@ const std::vector<Variant> kVariants = {{"constrained_sigma0", Cleaning::Constra
 
 struct Settings {
   CoreOptions core;
-  Real sigma = 0.3, spacing = 0.04, checkpoint_every = 0, inject_nan_at = 0;
+  Real sigma = 0.3, spacing = 0.04;
+  RunControlOptions run;
   std::vector<std::string> argv;
   const Checkpoint* restart = nullptr;
 };
@@ -123,9 +124,9 @@ RunResult run(const Variant& v, const Settings& s, const ParticleSet2D& p) {
     ts.frame_every = 20 * ts.sample_every;
   }
   ts.checkpoint = core.out / (v.name + ".checkpoint.bin");
-  ts.checkpoint_every = s.checkpoint_every;
+  ts.checkpoint_every = s.run.checkpoint_every;
   ts.restart = s.restart;
-  ts.inject_nan_at = s.inject_nan_at;
+  ts.inject_nan_at = s.run.inject_nan_at;
   ts.progress_interval = 10;
 
   Real e0 = 0, e_last = 0;
@@ -201,20 +202,11 @@ int main(int argc, char** argv) {
   std::vector<std::string> names{"all"};
   for (const Variant& v : kVariants) names.push_back(v.name);
   parser.add("--variant", &variant, "which run (all: the four in turn)", OneOf{names});
-  parser.add("--checkpoint-every", &s.checkpoint_every,
-             "simulated time between checkpoints <out>/<run>.checkpoint.bin (also at the end); 0 = only on failure "
-             "or SIGINT/SIGTERM",
-             NonNegative{});
-  std::filesystem::path restart_file;
-  parser.add("--restart", &restart_file, "continue one run from its checkpoint (its options apply, given ones override)",
-             "FILE");
-  parser.add("--inject-nan-at", &s.inject_nan_at, "testing aid: the RHS turns non-finite from this time on (0 = never)",
-             NonNegative{});
+  add_run_options(parser, s.run, "<out>/<run>.checkpoint.bin");
   const std::vector<const char*> parse_argv = as_argv(args);
   parser.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
   if (s.spacing > 0.25) parser.fail("--spacing", "must be at most 0.25 (a quarter of the disc radius)");
-  if (core.output_every > core.t_end) parser.fail("--output-every", "must not exceed --t-end");
-  if (s.checkpoint_every > core.t_end) parser.fail("--checkpoint-every", "must not exceed --t-end");
+  check_run_options(parser, s.run, core);
   std::vector<Variant> todo;
   for (const Variant& v : kVariants)
     if (variant == "all" || variant == v.name) todo.push_back(v);

@@ -30,7 +30,8 @@ const std::vector<std::string> kVariants = {"none", "resistivity", "euler", "cle
 struct Settings {
   CoreOptions core;
   int nx = 128;
-  Real sigma = 0.3, alpha_b = 1.0, checkpoint_every = 0, inject_nan_at = 0;
+  Real sigma = 0.3, alpha_b = 1.0;
+  RunControlOptions run;
   std::vector<std::string> argv;
   const Checkpoint* restart = nullptr;
 };
@@ -109,9 +110,9 @@ RunSummary run(const std::string& variant, const Settings& s) {
   ts.frames_basename = "orszag_tang";
   ts.frame_every = ts.sample_every;
   ts.checkpoint = dir / "checkpoint.bin";
-  ts.checkpoint_every = s.checkpoint_every;
+  ts.checkpoint_every = s.run.checkpoint_every;
   ts.restart = s.restart;
-  ts.inject_nan_at = s.inject_nan_at;
+  ts.inject_nan_at = s.run.inject_nan_at;
   ts.progress_interval = 10;
 
   std::vector<Real> pmag(p.size()), err(p.size()), pos(2 * p.size());
@@ -197,19 +198,10 @@ int main(int argc, char** argv) {
   parser.add("--variant", &variant, "div B control (all: the five in turn)", OneOf{allowed});
   parser.add("--sigma", &s.sigma, "cleaning damping, 1/tau = sigma c_h / h", NonNegative{});
   parser.add("--alpha-b", &s.alpha_b, "artificial resistivity strength of the resistivity variants", Positive{});
-  parser.add("--checkpoint-every", &s.checkpoint_every,
-             "simulated time between checkpoints <out>/<variant>/checkpoint.bin (also at the end); 0 = only on "
-             "failure or SIGINT/SIGTERM",
-             NonNegative{});
-  std::filesystem::path restart_file;
-  parser.add("--restart", &restart_file, "continue one variant from its checkpoint (its options apply, given ones "
-             "override)", "FILE");
-  parser.add("--inject-nan-at", &s.inject_nan_at, "testing aid: the RHS turns non-finite from this time on (0 = never)",
-             NonNegative{});
+  add_run_options(parser, s.run, "<out>/<variant>/checkpoint.bin");
   const std::vector<const char*> parse_argv = as_argv(args);
   parser.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
-  if (core.output_every > core.t_end) parser.fail("--output-every", "must not exceed --t-end");
-  if (s.checkpoint_every > core.t_end) parser.fail("--checkpoint-every", "must not exceed --t-end");
+  check_run_options(parser, s.run, core);
   std::vector<std::string> todo = variant == "all" ? kVariants : std::vector<std::string>{variant};
   if (restart) {  // one variant: the checkpoint's
     const std::string name = restart->text("run");

@@ -150,16 +150,8 @@ DropRunSummary run_water_drop(const DropRunSettings& s) {
   hooks.frame = [&](Real, const Real* y) { return make_frame(drop, y, buf); };
 
   sum.loop = run_time_loop(drop.model->system(), layout, stepper_options(s, drop), drop.y0, ts, hooks);
-  const TimeLoopResult& r = sum.loop;
-  sum.ok = r.ok();
-  sum.failure = r.failure;
-  sum.stopped_by_signal = r.signal;
-  sum.checkpoint = r.checkpoint;
-  sum.last_frame = r.last_frame;
-  sum.t_reached = r.t_reached;
-  sum.wall_seconds = r.wall_seconds;
-  sum.stats = r.stats;
-  sum.mean_abs_div_v_time_avg = r.t_reached > 0 ? acc.div_integral / r.t_reached : 0;
+  const Real t = sum.loop.t_reached;
+  sum.mean_abs_div_v_time_avg = t > 0 ? acc.div_integral / t : 0;
   sum.neighbour_builds = drop.model->neighbour_builds();
   return sum;
 }

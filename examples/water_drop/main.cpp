@@ -25,13 +25,13 @@ std::vector<std::string> stepper_names() {
 }
 
 void print_summary(const std::string& label, const DropRunSummary& s) {
-  std::printf("%-9s %s t=%.4g  particles %zu  wall %.1f s  %s\n", label.c_str(), s.ok ? "ok    " : "FAILED", s.t_reached,
-              s.particles, s.wall_seconds, format_stats(s.stats).c_str());
+  std::printf("%-9s %s t=%.4g  particles %zu  wall %.1f s  %s\n", label.c_str(), s.loop.ok() ? "ok    " : "FAILED",
+              s.loop.t_reached, s.particles, s.loop.wall_seconds, format_stats(s.loop.stats).c_str());
   std::printf("          max semi-axis error %.2f%% (t=%.4f), at first squeeze %.2f%%, <mean|div v|>_t %.4g,"
               " max density error %.3g%%, KE(end) %.6g, energy drift %.3g%%, neighbour builds %ld\n",
               100 * s.max_semi_axis_error, s.time_of_max_error, 100 * s.squeeze_error, s.mean_abs_div_v_time_avg,
               100 * s.max_rel_density_error, s.kinetic_energy_end, 100 * s.total_energy_drift, s.neighbour_builds);
-  if (!s.ok) std::printf("          reason: %s\n", s.failure.c_str());
+  if (!s.loop.ok()) std::printf("          reason: %s\n", s.loop.failure.c_str());
 }
 
 }  // namespace
@@ -72,22 +72,16 @@ int main(int argc, char** argv) {
   p.add("--initial-pressure", &initial_pressure, "initial density from the exact pressure, or rho0 everywhere",
         OneOf{{"exact", "zero"}});
   p.add("--diagnostics-every", &base.diagnostics_every, "time between diagnostics rows", Positive{});
-  p.add("--checkpoint-every", &base.checkpoint_every,
-        "simulated time between checkpoints <out>/<run>/checkpoint.bin (also written at the end); 0 = only on "
-        "failure or SIGINT/SIGTERM",
-        NonNegative{});
-  std::filesystem::path restart_file;
-  p.add("--restart", &restart_file, "continue from a checkpoint (its options apply, the ones given override)", "FILE");
-  p.add("--inject-nan-at", &base.inject_nan_at,
-        "testing aid: the RHS turns non-finite from this time on (0 = never); exercises retry + clean failure",
-        NonNegative{});
+  RunControlOptions run_control;
+  add_run_options(p, run_control, "<out>/<run>/checkpoint.bin");
   const std::vector<const char*> parse_argv = as_argv(args);
   p.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
   sc.exact_initial_pressure = initial_pressure == "exact";
   if (sc.spacing > 0.5 * sc.radius) p.fail("--spacing", "must be at most half the radius");
-  if (base.core.output_every > base.core.t_end) p.fail("--output-every", "must not exceed --t-end");
+  check_run_options(p, run_control, base.core);
   if (base.diagnostics_every > base.core.t_end) p.fail("--diagnostics-every", "must not exceed --t-end");
-  if (base.checkpoint_every > base.core.t_end) p.fail("--checkpoint-every", "must not exceed --t-end");
+  base.checkpoint_every = run_control.checkpoint_every;
+  base.inject_nan_at = run_control.inject_nan_at;
   std::vector<std::pair<std::string, bool>> runs;
   if (cleaning != "off") runs.push_back({"cleaned", true});
   if (cleaning != "on") runs.push_back({"control", false});
@@ -124,7 +118,7 @@ int main(int argc, char** argv) {
     const DropRunSummary& r = results.back().second;
     // a stop signal (checkpoint written) or a failure (last good state written): no further runs
     if (const int code = report_time_loop_end(r.loop); code != 0) {
-      if (!r.ok) print_summary(label, r);
+      if (!r.loop.ok()) print_summary(label, r);
       return code;
     }
   }
@@ -141,6 +135,6 @@ int main(int argc, char** argv) {
               base.core.out.c_str(), results.size() > 1 ? "cleaned,control" : results[0].first.c_str(),
               base.core.out.c_str(), results[0].first.c_str());
   for (const auto& r : results)
-    if (!r.second.ok) return 3;
+    if (!r.second.loop.ok()) return 3;
   return 0;
 }

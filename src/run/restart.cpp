@@ -53,6 +53,24 @@ std::vector<const char*> as_argv(const std::vector<std::string>& args) {
 
 // ---- --restart in an example's main() ------------------------------------------------------
 
+void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where) {
+  p.add("--checkpoint-every", &o.checkpoint_every,
+        "simulated time between checkpoints " + where + " (also written at the end); 0 = only on failure or "
+        "SIGINT/SIGTERM",
+        NonNegative{});
+  p.add("--restart", &o.restart,
+        "continue from a checkpoint (one run / variant: the checkpoint's; its options apply, the ones given override)",
+        "FILE");
+  p.add("--inject-nan-at", &o.inject_nan_at,
+        "testing aid: the RHS turns non-finite from this time on (0 = never); exercises retry + clean failure",
+        NonNegative{});
+}
+
+void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core) {
+  if (core.output_every > core.t_end) p.fail("--output-every", "must not exceed --t-end");
+  if (o.checkpoint_every > core.t_end) p.fail("--checkpoint-every", "must not exceed --t-end");
+}
+
 std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program) {
   const auto file = find_option_value(argc, argv, "--restart");
   if (!file) return std::nullopt;

@@ -31,6 +31,18 @@ std::vector<const char*> as_argv(const std::vector<std::string>& args);
 
 // ---- --restart in an example's main() ------------------------------------------------------
 
+// The run-control options of a time-integrating example.
+struct RunControlOptions {
+  Real checkpoint_every = 0;      // --checkpoint-every T (0: only on failure or a stop signal)
+  std::filesystem::path restart;  // --restart FILE (the file itself: load_restart_option, before parsing)
+  Real inject_nan_at = 0;         // --inject-nan-at T (testing aid; 0 = never)
+};
+// Registers --checkpoint-every (its help says the checkpoint goes to `where`), --restart and
+// --inject-nan-at.
+void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
+// After parsing: --output-every and --checkpoint-every must not exceed --t-end (p.fail, exit 2).
+void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core);
+
 // The checkpoint named by --restart (nullopt without the option), loaded before anything is
 // parsed or written. A missing value, an unreadable or corrupt file or one written by another
 // program: one line "<program>: --restart: ..." and exit 2.
