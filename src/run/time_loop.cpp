@@ -93,6 +93,12 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     y = c.y;
     t = c.t;
     for (auto& [name, ptr] : binds) *ptr = c.scalar(name);
+    // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
+    // new grid from the checkpoint time on.
+    if (c.scalar("sample_every") != s.sample_every) sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
+    if (c.scalar("frame_every") != frame_every) next_frame = (std::floor(t / frame_every * (1 + 1e-12)) + 1) * frame_every;
+    if (c.scalar("checkpoint_every") != s.checkpoint_every && s.checkpoint_every > 0)
+      next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
     csv.restore(c.text("diagnostics.csv"));
     if (vtk) vtk->restore(c.text("frames"));
     opts.initial_dt = c.last_dt;
@@ -124,6 +130,9 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
         if (name == cname) c.set_scalar(name, *cptr), counted = true;
       if (!counted) c.set_scalar(name, *ptr);
     }
+    c.set_scalar("sample_every", s.sample_every);
+    c.set_scalar("frame_every", frame_every);
+    c.set_scalar("checkpoint_every", s.checkpoint_every);
     c.set_text("run", s.run);
     for (const auto& [k, v] : s.texts) c.set_text(k, v);
     c.set_text("diagnostics.csv", csv.text());
