@@ -254,3 +254,25 @@ TEST(MhdRuns, AKilledRunLeavesOnlyCompleteFiles) {
   }
   EXPECT_GT(frames, 3);
 }
+
+TEST(MhdRuns, RestartOnAnotherOutputGridContinuesFromTheCheckpoint) {
+  TempDir dir;
+  const fs::path first = dir.path() / "first", second = dir.path() / "second";
+  ASSERT_EQ(run(binary("orszag_tang"), kOrszagTang + Args{"--out", first.string(), "--t-end", "0.1", "--output-every",
+                                                          "0.05", "--checkpoint-every", "0.1"},
+                dir.path())
+                .exit_code,
+            0);
+  const Finished r = run(binary("orszag_tang"), {"--restart", (first / "cleaning" / "checkpoint.bin").string(), "--out",
+                                                 second.string(), "--t-end", "0.2", "--output-every", "0.03"},
+                         dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Checkpoint c = load_checkpoint(second / "cleaning" / "checkpoint.bin");
+  const std::vector<Real> t = csv_column(slurp(second / "cleaning" / "diagnostics.csv"), "t");
+  // the first run's rows (0, 0.05, 0.1), then the new grid from the checkpoint on: 0.12, 0.15, 0.18, and t_end
+  const std::vector<Real> expected = {0, 0.05, 0.1, 0.12, 0.15, 0.18, 0.2};
+  ASSERT_EQ(t.size(), expected.size());
+  for (std::size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], expected[k], 1e-12);
+  EXPECT_EQ(c.t, t.back());
+  EXPECT_EQ(csv_column(c.text("diagnostics.csv"), "t"), t);
+}
