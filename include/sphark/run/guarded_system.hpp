@@ -18,8 +18,10 @@ namespace sphark {
 std::string describe_entries(const StateLayout& layout, const std::vector<std::size_t>& entries,
                              std::size_t max_named = 5);
 
-// Entries of y that are non-finite, or whose density is not positive (if the layout has a
-// density), ascending.
+// Entries of y that are non-finite, or non-physical: a density that is not positive, a negative
+// internal energy (for the fields the layout has); ascending. (Smoothing lengths are not in y: a
+// scheme that solves h in its RHS reports a failed or runaway h iteration itself, as a
+// recoverable failure; SPMHD does.)
 std::vector<std::size_t> nonphysical_entries(const StateLayout& layout, const Real* y);
 
 class GuardedSystem final : public OdeSystem {
