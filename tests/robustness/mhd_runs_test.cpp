@@ -236,7 +236,7 @@ TEST(MhdRuns, AKilledRunLeavesOnlyCompleteFiles) {
   TempDir dir;
   // frames and checkpoints as often as possible, killed (SIGKILL: no handler runs) at several moments
   int frames = 0;
-  for (const int delay_ms : {150, 400, 900}) {
+  for (const int delay_ms : {0, 150, 400}) {  // after the first checkpoint
     SCOPED_TRACE(delay_ms);
     const fs::path out = dir.path() / ("killed_" + std::to_string(delay_ms));
     const Spawned s = spawn(binary("orszag_tang"), kOrszagTang + Args{"--out", out.string(), "--t-end", "1000",
@@ -244,7 +244,7 @@ TEST(MhdRuns, AKilledRunLeavesOnlyCompleteFiles) {
                                                                       "0.02"},
                             dir.path());
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (!fs::exists(out / "cleaning" / "orszag_tang_00000.vtp") && std::chrono::steady_clock::now() < deadline)
+    while (!fs::exists(out / "cleaning" / "checkpoint.bin") && std::chrono::steady_clock::now() < deadline)
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
     kill(s.pid, SIGKILL);
@@ -252,7 +252,7 @@ TEST(MhdRuns, AKilledRunLeavesOnlyCompleteFiles) {
     frames += expect_complete_files(out / "cleaning");
     EXPECT_NO_THROW(load_checkpoint(out / "cleaning" / "checkpoint.bin"));
   }
-  EXPECT_GT(frames, 3);
+  EXPECT_GE(frames, 6);  // at least the frames before each first checkpoint (t = 0, 0.02)
 }
 
 TEST(MhdRuns, RestartOnAnotherOutputGridContinuesFromTheCheckpoint) {
