@@ -88,6 +88,8 @@ int main(int argc, char** argv) {
   p.add("--threads", &threads, "OpenMP threads (1: CPU time = work of one core)", Positive{});
   p.add_flag("--no-render", &render, "do not draw the charts", false);
   p.add_flag("--resume", &s.resume, "keep the rows of existing work_precision.csv / stability.csv and skip their cases");
+  p.add("--raise-sigint-after", &s.raise_sigint_after,
+        "testing aid: the study sends itself SIGINT after this many matrix cases (0 = never)", NonNegative{});
   bool profile = false;
   p.add_flag("--profile", &profile, "print the wall-time split (neighbours, density/h, forces, stepper, output)");
   p.parse_or_exit(argc, argv);

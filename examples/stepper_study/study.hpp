@@ -25,6 +25,7 @@ struct StudySettings {
   StabilitySettings stability;
   bool matrix = true, stability_run = true;
   bool resume = false;  // keep the rows of existing tables and skip their cases
+  int raise_sigint_after = 0;  // testing aid: raise(SIGINT) after this many matrix cases (0: never)
 };
 
 // Writes <out>/work_precision.csv (rewritten atomically as each case finishes) and

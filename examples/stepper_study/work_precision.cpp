@@ -3,6 +3,7 @@
 // are rewritten atomically after every row; SIGINT/SIGTERM stop between cases; --resume keeps
 // the rows of an earlier run and skips their cases.
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -31,7 +32,10 @@ class Table {
   Table(std::filesystem::path path, std::string header, bool resume, KeyOf key_of)
       : path_(std::move(path)), header_(std::move(header)), key_of_(key_of) {
     text_ = header_;
-    if (!resume || !std::filesystem::exists(path_)) return;
+    if (!resume || !std::filesystem::exists(path_)) {
+      write_file_atomically(path_, text_);  // the header: an interrupted study leaves a table
+      return;
+    }
     std::ifstream in(path_);
     std::string line;
     std::getline(in, line);
@@ -131,6 +135,7 @@ bool run_work_precision(const StudyScene& scene, const StudySettings& s) {
   print(s.reference_check, check, check_err);
 
   // false after SIGINT/SIGTERM: the rows so far are written, the rest is left for --resume
+  int done = 0;
   const auto run = [&](const StudyCase& c) {
     if (stop_requested()) return false;
     if (csv.has(case_key(c))) return true;
@@ -138,6 +143,7 @@ bool run_work_precision(const StudyScene& scene, const StudySettings& s) {
     const StudyErrors e = study_errors(scene, r, ref);
     print(c, r, e);
     csv.add(row_text(scene, c, r, e));
+    if (++done == s.raise_sigint_after) std::raise(SIGINT);  // testing aid: the real handler
     return true;
   };
   for (const std::string& m : s.adaptive_methods)
