@@ -14,6 +14,7 @@ import csv
 import math
 import os
 import sys
+from atomic_save import save_figure  # noqa: E402
 
 
 def fail(msg):
@@ -118,7 +119,7 @@ def main():
         ax.legend()
     fig.tight_layout()
     try:
-        fig.savefig(args.out, dpi=150)
+        save_figure(fig, args.out, dpi=150)
     except OSError as e:
         fail(f"--out: cannot write '{args.out}': {e.strerror}")
     print(args.out)

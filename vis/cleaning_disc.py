@@ -15,6 +15,7 @@ import sys
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from atomic_save import save_figure  # noqa: E402
 
 
 def read(path, column):
@@ -50,7 +51,7 @@ def main():
         ax.set_xlabel("t")
         ax.set_xlim(0, None)
     fig.tight_layout()
-    fig.savefig(a.out, dpi=150)
+    save_figure(fig, a.out, dpi=150)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from atomic_save import save_figure  # noqa: E402
 
 
 def read_csv(path):
@@ -50,7 +51,7 @@ def fig5(out):
     ax[1].legend(fontsize=8)
     ax[1].grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig5.png"), dpi=130)
+    save_figure(fig, os.path.join(out, "fig5.png"), dpi=130)
     plt.close(fig)
 
 
@@ -84,7 +85,7 @@ def profile_fig(out, geo, number, H):
     ins.set_title("zoom: |s| < 2H (dashed: s = H, band: 1%)", fontsize=8)
     ins.tick_params(labelsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, f"fig{number}_{geo}.png"), dpi=130)
+    save_figure(fig, os.path.join(out, f"fig{number}_{geo}.png"), dpi=130)
     plt.close(fig)
 
 
@@ -104,7 +105,7 @@ def slices(out, geo, H):
         ax[k].set_title(f"{geo}: inner + ghosts by " + (r"$\Psi_0$" if kind == "mirror" else r"$\Psi$"))
         fig.colorbar(sc, ax=ax[k], shrink=0.8, label=r"$n/\langle n\rangle$")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, f"slices_{geo}.png"), dpi=110)
+    save_figure(fig, os.path.join(out, f"slices_{geo}.png"), dpi=110)
     plt.close(fig)
 
 

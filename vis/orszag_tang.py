@@ -18,6 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import matplotlib.tri as mtri
+from atomic_save import save_figure  # noqa: E402
 
 VARIANTS = [("none", "no control"), ("resistivity", "resistivity"), ("euler", "Euler potentials"),
             ("cleaning", "divergence cleaning"), ("cleaning_resistivity", "cleaning + resistivity")]
@@ -103,7 +104,7 @@ def fig2(directory, t_want, out):
         return False
     fig.suptitle(f"Orszag–Tang vortex, t = {t_seen:g}")
     fig.tight_layout()
-    fig.savefig(out, dpi=130)
+    save_figure(fig, out, dpi=130)
     plt.close(fig)
     return True
 
@@ -129,7 +130,7 @@ def fig3(directory, out):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(out, dpi=150)
+    save_figure(fig, out, dpi=150)
     plt.close(fig)
     return True
 

@@ -20,6 +20,7 @@ import math
 import os
 import sys
 import xml.etree.ElementTree as ET
+from atomic_save import save_figure  # noqa: E402
 
 
 def fail(msg):
@@ -351,7 +352,7 @@ def main():
         fig.suptitle(args.title, fontsize=11)
     fig.tight_layout()
     try:
-        fig.savefig(args.out, dpi=dpi, bbox_inches="tight", pad_inches=0.08)
+        save_figure(fig, args.out, dpi=dpi, bbox_inches="tight", pad_inches=0.08)
     except OSError as e:
         fail(f"--out: cannot write '{args.out}': {e.strerror}")
     print(args.out)

@@ -16,6 +16,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from atomic_save import save_figure  # noqa: E402
 
 SIZES = [11, 21, 41, 81, 161, 321, 641, 1281]
 # seed 001, Tables 1-5, e_N as printed (rows N = 11 ... 1281)
@@ -78,7 +79,7 @@ def figures(out):
     plot_direct(ax, os.path.join(out, "fig2.csv"), "Fig. 2: uniform particles")
     ax.set_ylabel("second derivative")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig2.png"), dpi=110)
+    save_figure(fig, os.path.join(out, "fig2.png"), dpi=110)
     plt.close(fig)
 
     fig, axes = plt.subplots(2, 1, figsize=(6.4, 7.4))
@@ -87,7 +88,7 @@ def figures(out):
     for ax in axes:
         ax.set_ylabel("second derivative")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig4.png"), dpi=110)
+    save_figure(fig, os.path.join(out, "fig4.png"), dpi=110)
     plt.close(fig)
 
     path = os.path.join(out, "fig5.csv")
@@ -108,7 +109,7 @@ def figures(out):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig5.png"), dpi=110)
+    save_figure(fig, os.path.join(out, "fig5.png"), dpi=110)
     plt.close(fig)
 
 
@@ -132,7 +133,7 @@ def convergence(out):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=6, ncol=2)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "convergence.png"), dpi=80)
+    save_figure(fig, os.path.join(out, "convergence.png"), dpi=80)
     plt.close(fig)
 
 
@@ -161,7 +162,7 @@ def cost(out):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "cost.png"), dpi=80)
+    save_figure(fig, os.path.join(out, "cost.png"), dpi=80)
     plt.close(fig)
 
 
@@ -202,7 +203,7 @@ def kappa_chart(out):
         ax.grid(alpha=0.3)
     axes[0].set_title(r"ICSPM divides by $\kappa_i$, which vanishes about 0.3 h from the boundary", fontsize=9)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "kappa.png"), dpi=100)
+    save_figure(fig, os.path.join(out, "kappa.png"), dpi=100)
     plt.close(fig)
 
 

@@ -23,6 +23,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from atomic_save import save_figure, write_text  # noqa: E402
 
 FLOOR = 1e-15  # errors below this (round-off) are drawn at the floor
 LEVELS = [1e-2, 1e-3, 1e-4, 1e-6, 1e-8]
@@ -145,7 +146,7 @@ def work_precision_chart(cs, path, y, ylabel, title, both=True):
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7)
     fig.suptitle(title)
     fig.tight_layout(rect=(0, 0.13, 1, 0.95))
-    fig.savefig(path, dpi=150)
+    save_figure(fig, path, dpi=150)
     plt.close(fig)
     print(path)
 
@@ -185,7 +186,7 @@ def stability_chart(stab, rows, path):
     b.grid(True, which="both", alpha=0.3)
     b.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(path, dpi=150)
+    save_figure(fig, path, dpi=150)
     plt.close(fig)
     print(path)
 
@@ -286,8 +287,7 @@ def summary(rows, stab, ref, path, scene):
                 x = [r for r in rr if r["method"] == m and r["rtol"] == t]
                 cells.append(f"{x[0]['time_error']:.1e} / {fmt(x[0]['error'], '.1e')}" if x else "")
             out.append(f"| {short(m)} | " + " | ".join(cells) + " |")
-    with open(path, "w") as f:
-        f.write("\n".join(out) + "\n")
+    write_text(path, "\n".join(out) + "\n")
     print(path)
 
 

@@ -5,10 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <random>
 #include <vector>
 
+#include "sphark/io/atomic_file.hpp"
 #include "ghost_static.hpp"
 #include "sphark/boundaries/ghosts.hpp"
 
@@ -65,7 +65,7 @@ void run_cost_table(const Options& opt) {
       {"sphere", Sphere{Vec<3>::Zero(), 1, FluidSide::Inside}, Vec<3>(-1, -1, -1), Vec<3>(1, 1, 1), 4 * kPi / 3},
       {"torus", Torus{Vec<3>::Zero(), 3, 1, FluidSide::Inside}, Vec<3>(-4, -4, -1), Vec<3>(4, 4, 1), 6 * kPi * kPi},
   };
-  std::ofstream f(opt.out + "/table1.csv");
+  sphark::AtomicFile f(opt.out + "/table1.csv");
   f << "geometry,layer,ghosts,mirror_ms,psi_ms,increase_pct_mean,increase_pct_std,draws,particles\n";
   std::printf("table 1: %zu random inner particles, %d draws; increase of ghost-placement time, Psi vs Psi0\n",
               opt.cost_particles, opt.draws);
@@ -104,6 +104,7 @@ void run_cost_table(const Options& opt) {
       std::printf("  %-8s layer %-3s %8zu ghosts: Psi0 %7.2f ms, Psi %7.2f ms, increase %+6.2f +- %.2f %%\n", g.name,
                   layer_name, ghosts, 1e3 * tm, 1e3 * tp, mean, std::sqrt(var));
       std::fflush(stdout);
+      f.commit();  // the rows so far, atomically
     }
   }
 }

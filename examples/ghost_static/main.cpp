@@ -3,11 +3,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <stdexcept>
 #include <string>
 
 #include "ghost_static.hpp"
 #include "sphark/cli/options.hpp"
+#include "sphark/core/profile.hpp"
 #include "sphark/io/visualise.hpp"
 
 int main(int argc, char** argv) {
@@ -28,6 +30,8 @@ int main(int argc, char** argv) {
   p.add_flag("--no-plots", &opt.plots, "do not run vis/ghost_static.py at the end", false);
   p.add("--only", &only, "run one part (or all)", sphark::OneOf{{"all", "fig5", "static", "cost"}});
   p.add("--relax-map", &relax_map, "ghosts in the near-wall relaxation", sphark::OneOf{{"psi", "mirror"}});
+  bool profile = false;
+  p.add_flag("--profile", &profile, "print the wall-time split (output: CSV and VTK writes; the rest: computing)");
   p.parse_or_exit(argc, argv);
   opt.out = out.string();
   opt.particles = static_cast<std::size_t>(particles);
@@ -36,6 +40,7 @@ int main(int argc, char** argv) {
   opt.relax_with_mirror = relax_map == "mirror";
   if (only == "all") only.clear();
   sphark::prepare_output_dir(out, p.program());
+  sphark::run_profile().enable(profile);
 
   const auto t0 = std::chrono::steady_clock::now();
   try {
@@ -46,7 +51,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ghost_static: error: %s\n", e.what());
     return 1;
   }
-  std::printf("total %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("total %.1f s\n", total);
+  if (profile) sphark::run_profile().print(std::cout, total);
 
   if (opt.plots) {
     std::printf("/usr/bin/python3 vis/ghost_static.py %s\n", opt.out.c_str());

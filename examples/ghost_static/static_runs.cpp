@@ -4,11 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "sphark/core/profile.hpp"
+#include "sphark/io/atomic_file.hpp"
 #include "ghost_static.hpp"
 #include "sphark/boundaries/static_profile.hpp"
 #include "sphark/io/vtk_series.hpp"
@@ -41,13 +42,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 void write_particles(const std::string& path, const std::vector<Real>& x, const NodeDensityProfile<3>& p, Real n0) {
-  std::ofstream f(path);
+  sphark::AtomicFile f(path);
   f << "x,y,z,s,n,ghost\n";
   for (std::size_t i = 0; i < p.s_inner.size(); ++i)
     f << x[3 * i] << "," << x[3 * i + 1] << "," << x[3 * i + 2] << "," << p.s_inner[i] << "," << p.n_inner[i] / n0 << ",0\n";
   for (std::size_t g = 0; g < p.s_ghost.size(); ++g)
     f << p.x_ghost[3 * g] << "," << p.x_ghost[3 * g + 1] << "," << p.x_ghost[3 * g + 2] << "," << p.s_ghost[g] << ","
       << p.n_ghost[g] / n0 << ",1\n";
+  f.commit();
 }
 
 // The same particles as a .vtp (ParaView): arrays node_density (n / n0), s, ghost (0/1).
@@ -66,6 +68,7 @@ void write_particles_vtp(const std::string& path, const std::vector<Real>& x, co
   frame.count = s.size();
   frame.positions = pos.data();
   frame.arrays = {{"node_density", n.data(), 1}, {"s", s.data(), 1}, {"ghost", ghost.data(), 1}};
+  ScopedPhase phase(Phase::Output);
   write_vtp(path, frame, 0);
 }
 
@@ -80,7 +83,7 @@ void run_static(const Options& opt) {
       {"torus", Torus{Vec<3>::Zero(), 3, 1, FluidSide::Inside}, box(Vec<3>(-4, -4, -1), Vec<3>(4, 4, 1)), std::nullopt,
        2 * kPi * kPi * 3, -1},
   };
-  std::ofstream summary(opt.out + "/static_summary.csv");
+  sphark::AtomicFile summary(opt.out + "/static_summary.csv");
   summary << "relax_map,geometry,inner,h,H,bulk_rel_std,wall_rel_std,ghosts_psi,ghosts_mirror,invalid_psi,"
              "ghost_dev_psi_pct,ghost_dev_mirror_pct,inner_dev_psi_pct,inner_dev_mirror_pct,relax_s,eval_s\n";
 
@@ -113,6 +116,7 @@ void run_static(const Options& opt) {
     summary << (opt.relax_with_mirror ? "mirror" : "psi") << "," << geo.name << "," << set.x.size() / 3 << "," << h << "," << H << "," << set.bulk.rel_std << ","
             << set.wall.rel_std << "," << pm.s_ghost.size() << "," << p0.s_ghost.size() << "," << pm.invalid << "," << gm
             << "," << g0 << "," << im << "," << i0 << "," << t_relax << "," << t_eval << "\n";
+    summary.commit();  // the rows so far, atomically
     std::printf("static %-8s %zu inner, H = %.4f (relax %.1f s: bulk std %.2f%%, wall std %.2f%%; eval %.1f s)\n"
                 "         ghosts in (0, H]: Psi %+.2f%%  Psi0 %+.2f%%;  inner in (-H, 0]: Psi %+.2f%%  Psi0 %+.2f%%\n",
                 geo.name, set.x.size() / 3, H, t_relax, 100 * set.bulk.rel_std, 100 * set.wall.rel_std, t_eval, gm, g0,
@@ -124,7 +128,7 @@ void run_static(const Options& opt) {
     Real s_max = 0;
     for (Real s : p0.s_ghost) s_max = std::max(s_max, s);
     for (Real s : pm.s_ghost) s_max = std::max(s_max, s);
-    std::ofstream prof(opt.out + "/profile_" + geo.name + ".csv");
+    sphark::AtomicFile prof(opt.out + "/profile_" + geo.name + ".csv");
     prof << "s,n_mirror,n_map\n";
     const auto bin = [&](const std::vector<Real>& s, const std::vector<Real>& n, Real lo, Real hi) -> std::string {
       const BinMean b = mean_in_range(s, n, lo, hi);
@@ -141,6 +145,7 @@ void run_static(const Options& opt) {
       prof << lo + 0.5 * width << "," << bin(p0.s_ghost, p0.n_ghost, lo, hi) << "," << bin(pm.s_ghost, pm.n_ghost, lo, hi)
            << "\n";
     }
+    prof.commit();
     write_particles(opt.out + "/particles_" + geo.name + "_map.csv", set.x, pm, n0);
     write_particles(opt.out + "/particles_" + geo.name + "_mirror.csv", set.x, p0, n0);
     write_particles_vtp(opt.out + "/particles_" + geo.name + "_map.vtp", set.x, pm, n0);

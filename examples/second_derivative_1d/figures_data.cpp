@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
+#include "sphark/io/atomic_file.hpp"
 #include "scene.hpp"
 #include "sphark/derivatives1d/bvp1d.hpp"
 
@@ -18,7 +18,7 @@ const Method kMethods[] = {Method::Cspm, Method::Bim, Method::Icspm};
 void direct_figure(const std::filesystem::path& file, const Particles1D& p, Real h) {
   const TestFunction fn = seed_function();
   const Eigen::VectorXd f = p.x.unaryExpr(fn.f);
-  std::ofstream out(file);
+  sphark::AtomicFile out(file);
   out << "# h=" << h << " N=" << p.size() << "\nx,exact,CSPM,BIM,ICSPM\n";
   Eigen::MatrixXd d(p.size(), 3);
   for (int k = 0; k < 3; ++k) d.col(k) = second_derivative(kMethods[k], p, h) * f;
@@ -30,26 +30,28 @@ void direct_figure(const std::filesystem::path& file, const Particles1D& p, Real
     }
     out << '\n';
   }
+  out.commit();
 }
 
 // Boundary-value problem (5.18): u_i of each method next to f(x_i).
 void bvp_figure(const std::filesystem::path& file, const Particles1D& p, Real h) {
   const TestFunction fn = seed_function();
   const Eigen::VectorXd g = p.x.unaryExpr(fn.f2);
-  std::ofstream out(file);
+  sphark::AtomicFile out(file);
   out << "# h=" << h << " N=" << p.size() << "\nx,exact,CSPM,BIM,ICSPM\n";
   Eigen::MatrixXd u(p.size(), 3);
   for (int k = 0; k < 3; ++k)
     u.col(k) = solve_dirichlet(second_derivative(kMethods[k], p, h), p, g, fn.f(0.0), fn.f(1.0));
   for (Index i = 0; i < p.size(); ++i)
     out << p.x[i] << ',' << fn.f(p.x[i]) << ',' << u(i, 0) << ',' << u(i, 1) << ',' << u(i, 2) << '\n';
+  out.commit();
 }
 // Beyond the paper: kappa_i (4.14) against the distance to the nearest end in units of h, with the
 // direct ICSPM and CSPM errors, for 10 nested random sets with N = 641, c = 2. kappa passes
 // through 0 at about 0.3 h from the boundary: particles there get large ICSPM errors.
 void kappa_data(const std::filesystem::path& file, const Options& opt) {
   const TestFunction fn = seed_function();
-  std::ofstream out(file);
+  sphark::AtomicFile out(file);
   out << "seed,s,kappa,err_icspm,err_cspm\n";
   for (std::uint64_t seed = opt.seed; seed < opt.seed + 10; ++seed) {
     const Particles1D p = random_particles(641, seed);
@@ -64,6 +66,7 @@ void kappa_data(const std::filesystem::path& file, const Options& opt) {
           << std::abs(ec[i] - fn.f2(p.x[i])) << '\n';
     }
   }
+  out.commit();
 }
 }  // namespace
 

@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <string>
 
 #include "scene.hpp"
 #include "sphark/cli/options.hpp"
+#include "sphark/core/profile.hpp"
 
 using namespace sphark::d1;
 
@@ -26,6 +28,7 @@ scene::Options parse(int argc, char** argv) {
   p.add("--levels", &o.levels, "N = 11, 21, ..., 10*2^(L-1)+1 (8: up to 1281)", sphark::Range{2, 10});
   p.add_flag("--no-plots", &o.plots, "do not call vis/second_derivative_1d.py", false);
   p.add_flag("--no-timing", &o.timing, "skip the cost measurements (timing.csv)", false);
+  p.add_flag("--profile", &o.profile, "print the wall-time split (output: the CSV writes; the rest: computing)");
   p.parse_or_exit(argc, argv);
   o.seed = static_cast<std::uint64_t>(seed);
   sphark::prepare_output_dir(o.out, p.program());
@@ -44,6 +47,7 @@ const char* kTitles[] = {
 
 int main(int argc, char** argv) {
   const scene::Options opt = parse(argc, argv);
+  sphark::run_profile().enable(opt.profile);
   const auto t0 = std::chrono::steady_clock::now();
   try {
     std::filesystem::create_directories(opt.out);
@@ -71,6 +75,7 @@ int main(int argc, char** argv) {
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("\nCSV files in %s (computed in %.1f s)\n", opt.out.c_str(), elapsed);
+  if (opt.profile) sphark::run_profile().print(std::cout, elapsed);
   if (opt.plots) {
     const std::string script = std::string(SPHARK_SOURCE_DIR) + "/vis/second_derivative_1d.py";
     if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0) {

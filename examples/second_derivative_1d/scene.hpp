@@ -20,6 +20,7 @@ struct Options {
   int levels = 8;   // N = 11, 21, ..., 10 * 2^(levels-1) + 1
   bool plots = true;
   bool timing = true;
+  bool profile = false;  // --profile: wall-time split (output vs the rest)
 };
 
 // Tables: CSV `method,N,e_N,p_N` and Markdown on stdout.

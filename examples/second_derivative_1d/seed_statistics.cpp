@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 
+#include "sphark/io/atomic_file.hpp"
 #include "scene.hpp"
 
 namespace scene {
@@ -26,7 +26,7 @@ void seed_statistics(int table, const Options& opt, const std::vector<Index>& si
       if (m[Method::Icspm] <= std::min(m[Method::Cspm], m[Method::Bim])) ++icspm_wins[n];
   }
   const auto file = opt.out / ("table" + std::to_string(table) + "_seeds.csv");
-  std::ofstream out(file);
+  sphark::AtomicFile out(file);
   out << "method,N,seeds,mean_e_N,std_e_N,min_e_N,median_e_N,max_e_N,geomean_e_N,p_geomean\n";
   std::printf("\nTable %d over %d random sets (seeds %llu..%llu): e_N mean ± std [min, max], p from geometric means\n\n",
               table, opt.seeds, static_cast<unsigned long long>(opt.seed),
@@ -58,6 +58,7 @@ void seed_statistics(int table, const Options& opt, const std::vector<Index>& si
                   icspm_wins[n], opt.seeds);
     }
   }
+  out.commit();
 }
 
 }  // namespace scene

@@ -1,9 +1,9 @@
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 
+#include "sphark/io/atomic_file.hpp"
 #include "scene.hpp"
 
 namespace scene {
@@ -11,8 +11,7 @@ namespace scene {
 using namespace sphark::d1;
 
 void write_table_csv(const std::filesystem::path& file, const std::vector<TableRow>& rows) {
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  sphark::AtomicFile out(file);
   out << "method,N,e_N,p_N\n";
   char line[128];
   for (const TableRow& r : rows) {
@@ -23,6 +22,7 @@ void write_table_csv(const std::filesystem::path& file, const std::vector<TableR
                     r.order);
     out << line;
   }
+  out.commit();
 }
 
 void print_table_markdown(const std::string& title, const std::vector<TableRow>& rows) {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 
+#include "sphark/io/atomic_file.hpp"
 #include "scene.hpp"
 #include "sphark/derivatives1d/bvp1d.hpp"
 
@@ -45,7 +45,7 @@ void write_timing(const Options& opt, const std::vector<Index>& sizes) {
                             {Method::Bim, {2, false}, "BIM c=2"},
                             {Method::Bim, {0, true}, "BIM c=k^2"}};
   const TestFunction fn = seed_function();
-  std::ofstream out(opt.out / "timing.csv");
+  sphark::AtomicFile out(opt.out / "timing.csv");
   out << "config,method,N,h,nnz,assemble_s,apply_s,solve_s,e_direct,e_bvp\n";
   std::printf("\nCost (uniform particles; mean wall time per call)\n\n");
   std::printf("| config | N | nnz | assemble [us] | apply [us] | solve (5.18) [us] | e_N direct | e_N BVP |\n");
@@ -70,6 +70,7 @@ void write_timing(const Options& opt, const std::vector<Index>& sizes) {
                   static_cast<long>(L.nonZeros()), t_asm * 1e6, t_app * 1e6, t_sol * 1e6, ed, eb);
     }
   }
+  out.commit();
 }
 
 }  // namespace scene

@@ -2,13 +2,17 @@
 // least work, and where does each one fail? Work-precision matrix + stability limits of the
 // time steppers on one scene. See README.md in this folder.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <sstream>
 
 #include "sphark/cli/options.hpp"
+#include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/visualise.hpp"
+#include "sphark/run/signals.hpp"
 #include "study.hpp"
 
 using namespace sphark;
@@ -85,6 +89,11 @@ int main(int argc, char** argv) {
   p.add("--bisections", &s.stability.iterations, "bisection steps after bracketing", NonNegative{});
   p.add("--threads", &threads, "OpenMP threads (1: CPU time = work of one core)", Positive{});
   p.add_flag("--no-render", &render, "do not draw the charts", false);
+  p.add_flag("--resume", &s.resume, "keep the rows of existing work_precision.csv / stability.csv and skip their cases");
+  p.add("--raise-sigint-after", &s.raise_sigint_after,
+        "testing aid: the study sends itself SIGINT after this many matrix cases (0 = never)", NonNegative{});
+  bool profile = false;
+  p.add_flag("--profile", &profile, "print the wall-time split (neighbours, density/h, forces, stepper, output)");
   p.parse_or_exit(argc, argv);
 
   s.adaptive_methods = adaptive == "none" ? std::vector<std::string>{} : method_list(p, "--methods", adaptive, true, false);
@@ -114,7 +123,10 @@ int main(int argc, char** argv) {
     exit_usage_error(p.program(), "--scene", e.what());
   }
   apply_thread_count(threads);
+  run_profile().enable(profile);
   prepare_output_dir(s.out, p.program());
+  install_stop_handlers();  // SIGINT/SIGTERM: finish the current case, keep the rows so far
+  const auto start = std::chrono::steady_clock::now();
   std::printf("stepper_study: %s; CFL unit h/(c+|v|) = %.4g; output %s\n", scene->description().c_str(), scene->cfl_unit(),
               s.out.c_str());
   try {
@@ -123,6 +135,12 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stepper_study: %s\n", e.what());
     return 1;
+  }
+  if (profile) run_profile().print(std::cout, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  if (const int sig = stop_requested()) {
+    std::fprintf(stderr, "stepper_study: stopped by signal %d; %s has the rows done so far (continue with --resume)\n", sig,
+                 (s.out / "work_precision.csv").c_str());
+    return 128 + sig;
   }
   if (render && !run_python("work_precision.py", {"--dir", s.out.string()}, false)) return 1;
   return 0;

@@ -25,15 +25,18 @@ struct StudySettings {
   std::vector<std::string> stability_methods;
   StabilitySettings stability;
   bool matrix = true, stability_run = true;
+  bool resume = false;  // keep the rows of existing tables and skip their cases
+  int raise_sigint_after = 0;  // testing aid: raise(SIGINT) after this many matrix cases (0: never)
 };
 
-// Writes <out>/work_precision.csv (one row per case, appended as runs finish) and
-// <out>/reference.csv (the reference run and its check). Returns false if the reference failed.
+// Writes <out>/work_precision.csv (rewritten atomically as each case finishes) and
+// <out>/reference.csv (the reference run and its check). Stops between cases after
+// SIGINT/SIGTERM (signals.hpp). Returns false if the reference failed.
 bool run_work_precision(const StudyScene& scene, const StudySettings& s);
 // Why `method` cannot run on the scene (leapfrog without moving particles, ark-imex without a
 // stiff part), or "" if it can.
 std::string unsupported(const StudyScene& scene, const std::string& method);
-// Writes <out>/stability.csv.
+// Writes <out>/stability.csv (atomically, row by row; stops between methods after a signal).
 void run_stability(const StudyScene& scene, const StudySettings& s);
 
 }  // namespace sphark

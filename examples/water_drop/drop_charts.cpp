@@ -16,8 +16,8 @@ void write_drop_summary(const std::filesystem::path& out, const DropResults& res
   for (const auto& [label, r] : results) {
     char line[512];
     std::snprintf(line, sizeof line, "%s,%d,%.9g,%zu,%.4g,%ld,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.9g,%.6g\n", label.c_str(),
-                  r.ok ? 1 : 0, r.t_reached, r.particles, r.wall_seconds, r.stats.steps, r.stats.attempts,
-                  r.stats.rhs_evals, r.stats.error_test_failures, r.max_semi_axis_error, r.squeeze_error,
+                  r.loop.ok() ? 1 : 0, r.loop.t_reached, r.particles, r.loop.wall_seconds, r.loop.stats.steps,
+                  r.loop.stats.attempts, r.loop.stats.rhs_evals, r.loop.stats.error_test_failures, r.max_semi_axis_error, r.squeeze_error,
                   r.mean_abs_div_v_time_avg, r.max_rel_density_error, r.kinetic_energy_end, r.total_energy_drift);
     s << line;
   }

@@ -8,6 +8,7 @@
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/stepper_options.hpp"
 #include "sphark/run/checkpoint.hpp"
+#include "sphark/run/time_loop.hpp"
 #include "sphark/scenes/water_drop.hpp"
 
 namespace sphark {
@@ -25,14 +26,7 @@ struct DropRunSettings {
 };
 
 struct DropRunSummary {
-  bool ok = false;
-  std::string failure;               // why the stepper gave up, if !ok
-  int stopped_by_signal = 0;         // SIGINT/SIGTERM received: checkpoint written, run stopped
-  std::filesystem::path checkpoint;  // last checkpoint written ("" if none)
-  std::filesystem::path last_frame;  // last VTK frame written
-  Real t_reached = 0;
-  double wall_seconds = 0;
-  StepperStats stats;
+  TimeLoopResult loop;               // the run driver's outcome: status, reason, t reached, stats, ...
   std::size_t particles = 0;
   Real max_semi_axis_error = 0;      // max over samples of the relative semi-axis error
   Real time_of_max_error = 0;

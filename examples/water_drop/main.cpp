@@ -5,13 +5,13 @@
 #include <exception>
 #include <iostream>
 #include <optional>
-#include <sstream>
 
 #include "drop_charts.hpp"
 #include "drop_run.hpp"
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/run/restart.hpp"
+#include "sphark/core/profile.hpp"
 #include "sphark/run/signals.hpp"
 
 using namespace sphark;
@@ -25,47 +25,21 @@ std::vector<std::string> stepper_names() {
 }
 
 void print_summary(const std::string& label, const DropRunSummary& s) {
-  std::printf("%-9s %s t=%.4g  particles %zu  wall %.1f s  %s\n", label.c_str(), s.ok ? "ok    " : "FAILED", s.t_reached,
-              s.particles, s.wall_seconds, format_stats(s.stats).c_str());
+  std::printf("%-9s %s t=%.4g  particles %zu  wall %.1f s  %s\n", label.c_str(), s.loop.ok() ? "ok    " : "FAILED",
+              s.loop.t_reached, s.particles, s.loop.wall_seconds, format_stats(s.loop.stats).c_str());
   std::printf("          max semi-axis error %.2f%% (t=%.4f), at first squeeze %.2f%%, <mean|div v|>_t %.4g,"
               " max density error %.3g%%, KE(end) %.6g, energy drift %.3g%%, neighbour builds %ld\n",
               100 * s.max_semi_axis_error, s.time_of_max_error, 100 * s.squeeze_error, s.mean_abs_div_v_time_avg,
               100 * s.max_rel_density_error, s.kinetic_energy_end, 100 * s.total_energy_drift, s.neighbour_builds);
-  if (!s.ok) std::printf("          reason: %s\n", s.failure.c_str());
+  if (!s.loop.ok()) std::printf("          reason: %s\n", s.loop.failure.c_str());
 }
 
-// --restart FILE: the checkpoint, loaded before anything is parsed or written (its stored
-// options come first, the ones given now override them). Bad file: one line, exit 2.
-std::optional<Checkpoint> load_restart(int argc, char** argv) {
-  const auto file = find_option_value(argc, argv, "--restart");
-  if (!file) return std::nullopt;
-  if (file->empty()) exit_usage_error("water_drop", "--restart", "missing value (expected a checkpoint FILE)");
-  try {
-    Checkpoint c = load_checkpoint(*file);
-    if (c.program != "water_drop")
-      exit_usage_error("water_drop", "--restart", "'" + *file + "' was written by " + c.program + ", not water_drop");
-    return c;
-  } catch (const std::exception& e) {
-    exit_usage_error("water_drop", "--restart", e.what());
-  }
-}
-
-// The first scene parameter that differs between the checkpoint and this run ("" if none).
-std::string scene_difference(const std::string& stored, const std::string& now) {
-  std::istringstream a(stored), b(now);
-  std::string la, lb;
-  while (std::getline(a, la) && std::getline(b, lb))
-    if (la != lb) return "checkpoint has " + la + ", this run " + lb;
-  return {};
-}
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::optional<Checkpoint> restart = load_restart(argc, argv);
+  const std::optional<Checkpoint> restart = load_restart_option(argc, argv, "water_drop");
   // Options of this run (stored in its checkpoints): a restart's stored ones, then these.
-  std::vector<std::string> args = arguments(argc, argv);
-  if (restart) args = without_option(restart_arguments("water_drop", restart->argv, args), "--restart");
-  else args.insert(args.begin(), "water_drop");
+  const std::vector<std::string> args = run_arguments("water_drop", argc, argv, restart ? &*restart : nullptr);
   DropRunSettings base;
   base.core.out = "out/water_drop";
   base.core.t_end = 0.1;
@@ -98,22 +72,16 @@ int main(int argc, char** argv) {
   p.add("--initial-pressure", &initial_pressure, "initial density from the exact pressure, or rho0 everywhere",
         OneOf{{"exact", "zero"}});
   p.add("--diagnostics-every", &base.diagnostics_every, "time between diagnostics rows", Positive{});
-  p.add("--checkpoint-every", &base.checkpoint_every,
-        "simulated time between checkpoints <out>/<run>/checkpoint.bin (also written at the end); 0 = only on "
-        "failure or SIGINT/SIGTERM",
-        NonNegative{});
-  std::filesystem::path restart_file;
-  p.add("--restart", &restart_file, "continue from a checkpoint (its options apply, the ones given override)", "FILE");
-  p.add("--inject-nan-at", &base.inject_nan_at,
-        "testing aid: the RHS turns non-finite from this time on (0 = never); exercises retry + clean failure",
-        NonNegative{});
+  RunControlOptions run_control;
+  add_run_options(p, run_control, "<out>/<run>/checkpoint.bin");
   const std::vector<const char*> parse_argv = as_argv(args);
   p.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
   sc.exact_initial_pressure = initial_pressure == "exact";
   if (sc.spacing > 0.5 * sc.radius) p.fail("--spacing", "must be at most half the radius");
-  if (base.core.output_every > base.core.t_end) p.fail("--output-every", "must not exceed --t-end");
+  check_run_options(p, run_control, base.core);
   if (base.diagnostics_every > base.core.t_end) p.fail("--diagnostics-every", "must not exceed --t-end");
-  if (base.checkpoint_every > base.core.t_end) p.fail("--checkpoint-every", "must not exceed --t-end");
+  base.checkpoint_every = run_control.checkpoint_every;
+  base.inject_nan_at = run_control.inject_nan_at;
   std::vector<std::pair<std::string, bool>> runs;
   if (cleaning != "off") runs.push_back({"cleaned", true});
   if (cleaning != "on") runs.push_back({"control", false});
@@ -124,15 +92,11 @@ int main(int argc, char** argv) {
     runs = {{label, label == "cleaned"}};
     WaterDropConfig c = sc;
     c.cleaning = label == "cleaned";
-    if (const std::string d = scene_difference(restart->text("scene"), scene_text(c)); !d.empty())
-      p.fail("--restart", "scene parameters cannot change on restart: " + d);
-    if (!(restart->t < base.core.t_end * (1 - 1e-12))) {
-      char why[128];
-      std::snprintf(why, sizeof why, "%.9g is not after the checkpoint time %.9g", base.core.t_end, restart->t);
-      p.fail("--t-end", why);
-    }
+    check_restart_text(p, *restart, "scene", scene_text(c), "scene parameters");
+    check_restart_t_end(p, *restart, base.core.t_end);
   }
   apply_thread_count(base.core.threads);
+  run_profile().enable(base.core.profile);
   prepare_output_dir(base.core.out, p.program());
   install_stop_handlers();
   base.argv.assign(args.begin() + 1, args.end());
@@ -152,16 +116,10 @@ int main(int argc, char** argv) {
       return 1;
     }
     const DropRunSummary& r = results.back().second;
-    if (r.stopped_by_signal) {  // orderly stop: checkpoint written, no further runs or pictures
-      std::fprintf(stderr, "water_drop: %s run stopped by signal %d at t=%.9g; checkpoint %s (continue with --restart %s)\n",
-                   label.c_str(), r.stopped_by_signal, r.t_reached, r.checkpoint.c_str(), r.checkpoint.c_str());
-      return 128 + r.stopped_by_signal;
-    }
-    if (!r.ok) {
-      std::fprintf(stderr, "water_drop: %s run FAILED at t=%.9g: %s\nwater_drop: last good state: %s and %s\n",
-                   label.c_str(), r.t_reached, r.failure.c_str(), r.last_frame.c_str(), r.checkpoint.c_str());
-      print_summary(label, r);
-      return 3;
+    // a stop signal (checkpoint written) or a failure (last good state written): no further runs
+    if (const int code = report_time_loop_end(r.loop); code != 0) {
+      if (!r.loop.ok()) print_summary(label, r);
+      return code;
     }
   }
   std::printf("\nwater drop, %s, rtol %g, atol %g, dt %g, t_end %g\n", base.core.stepper.c_str(), base.core.rtol,
@@ -177,6 +135,6 @@ int main(int argc, char** argv) {
               base.core.out.c_str(), results.size() > 1 ? "cleaned,control" : results[0].first.c_str(),
               base.core.out.c_str(), results[0].first.c_str());
   for (const auto& r : results)
-    if (!r.second.ok) return 3;
+    if (!r.second.loop.ok()) return 3;
   return 0;
 }

@@ -1,5 +1,6 @@
 #include "sphark/io/csv_writer.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -17,27 +18,53 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
   return path.parent_path() / name;
 }
 
-void write_file_atomically(const std::filesystem::path& path, const std::string& contents) {
-  const std::filesystem::path tmp = temporary_sibling(path);
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) {
-    throw std::runtime_error("cannot write '" + path.string() + "': " + std::strerror(errno));
-  }
-  const bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
-  const int write_errno = errno;
-  if (std::fclose(f) != 0 || !ok) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot write '" + path.string() + "': " +
-                             std::strerror(ok ? errno : write_errno));
-  }
+namespace {
+
+[[noreturn]] void fail_commit(const std::filesystem::path& tmp, const std::string& what) {
+  std::error_code ignored;
+  std::filesystem::remove(tmp, ignored);
+  throw std::runtime_error(what);
+}
+
+// fsync of a file or directory by name; 0 or an errno value.
+int sync_path(const std::filesystem::path& p, int flags) {
+  const int fd = ::open(p.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return errno;
+  const int rc = ::fsync(fd) == 0 ? 0 : errno;
+  ::close(fd);
+  return rc == EINVAL || rc == EROFS ? 0 : rc;  // (file systems without fsync on directories)
+}
+
+}  // namespace
+
+void commit_temporary(const std::filesystem::path& tmp, const std::filesystem::path& path) {
+  if (const int e = sync_path(tmp, O_RDONLY))
+    fail_commit(tmp, "cannot write '" + path.string() + "': fsync: " + std::strerror(e));
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename onto '" + path.string() + "': " + ec.message());
+  if (ec) fail_commit(tmp, "cannot rename onto '" + path.string() + "': " + ec.message());
+  const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
+  if (const int e = sync_path(dir, O_RDONLY | O_DIRECTORY))
+    throw std::runtime_error("cannot sync the directory of '" + path.string() + "': " + std::strerror(e));
+}
+
+void write_file_atomically(const std::filesystem::path& path, const std::string& contents) {
+  const std::filesystem::path tmp = temporary_sibling(path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot write '" + path.string() + "': " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < contents.size()) {
+    const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int e = n < 0 ? errno : EIO;
+      ::close(fd);
+      fail_commit(tmp, "cannot write '" + path.string() + "': " + std::strerror(e));
+    }
+    done += static_cast<std::size_t>(n);
   }
+  if (::close(fd) != 0) fail_commit(tmp, "cannot write '" + path.string() + "': " + std::strerror(errno));
+  commit_temporary(tmp, path);
 }
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns)

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "sphark/io/csv_writer.hpp"  // write_file_atomically, temporary_sibling
+#include "sphark/io/csv_writer.hpp"  // write_file_atomically, temporary_sibling, commit_temporary
 
 namespace sphark {
 namespace {
@@ -125,12 +125,7 @@ void write_vtp(const std::filesystem::path& path, const ParticleFrame& frame, Re
     std::filesystem::remove(tmp, ec);
     throw std::runtime_error("cannot write '" + path.string() + "' (VTK writer failed)");
   }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename onto '" + path.string() + "': " + ec.message());
-  }
+  commit_temporary(tmp, path);  // fsync, rename, fsync of the directory
 }
 
 std::string pvd_collection_xml(const std::vector<std::pair<Real, std::string>>& frames) {

@@ -32,11 +32,14 @@ std::string describe_entries(const StateLayout& layout, const std::vector<std::s
 
 std::vector<std::size_t> nonphysical_entries(const StateLayout& layout, const Real* y) {
   std::vector<std::size_t> bad;
-  const bool has_rho = layout.has(Field::Density);
-  const std::size_t r0 = has_rho ? layout.offset(Field::Density) : 0;
-  const std::size_t r1 = has_rho ? r0 + layout.field_size(Field::Density) : 0;
+  const auto range = [&](Field f) {  // [begin, end) of a field's entries, empty if absent
+    const std::size_t b = layout.has(f) ? layout.offset(f) : 0;
+    return std::pair{b, layout.has(f) ? b + layout.field_size(f) : b};
+  };
+  const auto [r0, r1] = range(Field::Density);         // rho > 0
+  const auto [u0, u1] = range(Field::InternalEnergy);  // u >= 0
   for (std::size_t k = 0; k < layout.size(); ++k)
-    if (!std::isfinite(y[k]) || (k >= r0 && k < r1 && !(y[k] > 0))) bad.push_back(k);
+    if (!std::isfinite(y[k]) || (k >= r0 && k < r1 && !(y[k] > 0)) || (k >= u0 && k < u1 && y[k] < 0)) bad.push_back(k);
   return bad;
 }
 
@@ -67,8 +70,8 @@ int GuardedSystem::rhs(Real t, const Real* y, Real* ydot) {
   }
   const int r = inner_.rhs(t, y, ydot);
   if (r != 0) return r;
-  if (t >= inject_from_ && layout_.has(Field::Velocity))
-    ydot[layout_.offset(Field::Velocity)] = std::numeric_limits<Real>::quiet_NaN();
+  if (t >= inject_from_)  // particle 0's velocity derivative (or the first state entry)
+    ydot[layout_.has(Field::Velocity) ? layout_.offset(Field::Velocity) : 0] = std::numeric_limits<Real>::quiet_NaN();
   return check(t, ydot, size(), "time derivative");
 }
 

@@ -1,5 +1,9 @@
 #include "sphark/run/restart.hpp"
 
+#include <charconv>
+#include <cstdio>
+#include <sstream>
+
 namespace sphark {
 
 std::optional<std::string> find_option_value(int argc, const char* const* argv, const std::string& name) {
@@ -45,6 +49,74 @@ std::vector<const char*> as_argv(const std::vector<std::string>& args) {
   std::vector<const char*> p;
   for (const auto& a : args) p.push_back(a.c_str());
   return p;
+}
+
+// ---- --restart in an example's main() ------------------------------------------------------
+
+void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where) {
+  p.add("--checkpoint-every", &o.checkpoint_every,
+        "simulated time between checkpoints " + where + " (also written at the end); 0 = only on failure or "
+        "SIGINT/SIGTERM",
+        NonNegative{});
+  p.add("--restart", &o.restart,
+        "continue from a checkpoint (one run / variant: the checkpoint's; its options apply, the ones given override)",
+        "FILE");
+  p.add("--inject-nan-at", &o.inject_nan_at,
+        "testing aid: the RHS turns non-finite from this time on (0 = never); exercises retry + clean failure",
+        NonNegative{});
+}
+
+void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core) {
+  if (core.output_every > core.t_end) p.fail("--output-every", "must not exceed --t-end");
+  if (o.checkpoint_every > core.t_end) p.fail("--checkpoint-every", "must not exceed --t-end");
+}
+
+std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program) {
+  const auto file = find_option_value(argc, argv, "--restart");
+  if (!file) return std::nullopt;
+  if (file->empty()) exit_usage_error(program, "--restart", "missing value (expected a checkpoint FILE)");
+  Checkpoint c;
+  try {
+    c = load_checkpoint(*file);
+  } catch (const std::exception& e) {
+    exit_usage_error(program, "--restart", e.what());
+  }
+  if (c.program != program)
+    exit_usage_error(program, "--restart", "'" + *file + "' was written by " + c.program + ", not " + program);
+  return c;
+}
+
+std::vector<std::string> run_arguments(const std::string& program, int argc, const char* const* argv,
+                                       const Checkpoint* restart) {
+  std::vector<std::string> args = arguments(argc, argv);
+  if (restart) return without_option(restart_arguments(program, restart->argv, args), "--restart");
+  args.insert(args.begin(), program);
+  return args;
+}
+
+void append_key_value(std::string& text, const std::string& key, Real value) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, value);
+  ((text += key) += '=').append(buf, r.ptr) += '\n';
+}
+
+void append_key_value(std::string& text, const std::string& key, const std::string& value) {
+  ((text += key) += '=') += value + '\n';
+}
+
+void check_restart_text(const OptionParser& p, const Checkpoint& c, const std::string& stored_name,
+                        const std::string& now, const std::string& what) {
+  std::istringstream a(c.text(stored_name)), b(now);
+  std::string la, lb;
+  while (std::getline(a, la) && std::getline(b, lb))
+    if (la != lb) p.fail("--restart", what + " cannot change on restart: checkpoint has " + la + ", this run " + lb);
+}
+
+void check_restart_t_end(const OptionParser& p, const Checkpoint& c, Real t_end) {
+  if (c.t < t_end * (1 - 1e-12)) return;
+  char why[128];
+  std::snprintf(why, sizeof why, "%.9g is not after the checkpoint time %.9g", t_end, c.t);
+  p.fail("--t-end", why);
 }
 
 }  // namespace sphark

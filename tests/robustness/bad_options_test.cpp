@@ -139,3 +139,84 @@ TEST(BadOptions, GhostStaticRejectsWithOneLineAndNoFiles) {
   };
   for (const auto& c : cases) expect_rejected(bin, c, dir, out);
 }
+
+TEST(BadOptions, CleaningDiscRejectsEveryClassWithOneLineAndNoFiles) {
+  const auto bin = example_binary("cleaning_disc");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  std::ofstream(dir.path() / "a_file") << "x";
+  std::ofstream(dir.path() / "garbage.bin") << "not a checkpoint";
+  const std::vector<BadInput> cases = {
+      {{"--variant", "constrained"}, "--variant: bad value 'constrained'"},  // unknown variant
+      {{"--stepper", "leapfrog"}, "--stepper: bad value 'leapfrog'"},       // unknown stepper here
+      {{"--spacing", "0"}, "--spacing: bad value '0'"},                     // non-positive size
+      {{"--spacing", "0.5"}, "--spacing: must be at most 0.25"},
+      {{"--t-end", "-2"}, "--t-end: bad value '-2'"},                       // non-positive time
+      {{"--output-every", "20"}, "--output-every: must not exceed --t-end"},
+      {{"--checkpoint-every", "-1"}, "--checkpoint-every: bad value '-1'"},
+      {{"--rtol", "0"}, "--rtol: bad value '0'"},                           // non-positive tolerance
+      {{"--atol", "nan"}, "--atol: bad value 'nan'"},                       // NaN / inf
+      {{"--sigma", "inf"}, "--sigma: bad value 'inf'"},
+      {{"--dt", "-1"}, "--dt: bad value '-1'"},
+      {{"--inject-nan-at", "-1"}, "--inject-nan-at: bad value '-1'"},
+      {{"--restart", (dir.path() / "absent.bin").string()}, "--restart: checkpoint"},
+      {{"--restart", (dir.path() / "garbage.bin").string()}, "not a sphark checkpoint"},
+      {{"--out", (dir.path() / "a_file" / "sub").string()}, "--out: cannot create"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}
+
+TEST(BadOptions, OrszagTangRejectsEveryClassWithOneLineAndNoFiles) {
+  const auto bin = example_binary("orszag_tang");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  std::ofstream(dir.path() / "a_file") << "x";
+  // a checkpoint of another program
+  const auto disc = example_binary("cleaning_disc");
+  ASSERT_EQ(run(disc, {"--out", (dir.path() / "disc").string(), "--spacing", "0.25", "--t-end", "0.1",
+                       "--output-every", "0.1", "--variant", "constrained_sigma0", "--checkpoint-every", "0.1",
+                       "--no-render"},
+                dir.path())
+                .exit_code,
+            0);
+  const std::string foreign = (dir.path() / "disc" / "constrained_sigma0.checkpoint.bin").string();
+  const std::vector<BadInput> cases = {
+      {{"--variant", "hall"}, "--variant: bad value 'hall'"},               // unknown variant
+      {{"--stepper", "euler"}, "--stepper: bad value 'euler'"},             // unknown stepper
+      {{"--nx", "4"}, "--nx: bad value '4'"},                               // too few particles
+      {{"--nx", "-8"}, "--nx: bad value '-8'"},
+      {{"--t-end", "0"}, "--t-end: bad value '0'"},                         // non-positive time
+      {{"--output-every", "-0.1"}, "--output-every: bad value '-0.1'"},
+      {{"--checkpoint-every", "2"}, "--checkpoint-every: must not exceed --t-end"},
+      {{"--rtol", "-1e-4"}, "--rtol: bad value '-1e-4'"},                   // non-positive tolerance
+      {{"--alpha-b", "0"}, "--alpha-b: bad value '0'"},
+      {{"--sigma", "NaN"}, "--sigma: bad value 'NaN'"},                     // NaN / inf
+      {{"--t-end", "inf"}, "--t-end: bad value 'inf'"},
+      {{"--restart"}, "--restart: missing value"},
+      {{"--restart", foreign}, "was written by cleaning_disc, not orszag_tang"},
+      {{"--out", "/proc/sphark_out"}, "--out: cannot create"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}
+
+TEST(BadOptions, StepperStudyRejectsWithOneLineAndNoFiles) {
+  const auto bin = example_binary("stepper_study");
+  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  const std::vector<BadInput> cases = {
+      {{"--scene", "cube"}, "--scene: bad value 'cube'"},                              // unknown scene
+      {{"--methods", "RK99"}, "--methods: unknown method 'RK99'"},                     // unknown stepper
+      {{"--methods", "KNOTH_WOLKE_3_3"}, "has no embedding"},
+      {{"--rtols", "1e-3,0"}, "--rtols: bad value '1e-3,0'"},                          // non-positive tolerance
+      {{"--rtols", "1e-3,nan"}, "--rtols: bad value '1e-3,nan'"},                      // NaN
+      {{"--fixed-cfls", "-0.1"}, "--fixed-cfls: bad value '-0.1'"},
+      {{"--t-end", "-1"}, "--t-end: bad value '-1'"},                                  // negative time
+      {{"--spacing", "inf"}, "--spacing: bad value 'inf'"},                            // inf size
+      {{"--max-rhs", "0"}, "--max-rhs: bad value '0'"},
+      {{"--out", "/proc/sphark_out"}, "--out: cannot create"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, out);
+}

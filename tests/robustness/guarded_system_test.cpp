@@ -106,3 +106,16 @@ TEST(GuardedSystem, NamesNonFiniteDerivativesAndNonPhysicalStates) {
       << sys.last_error();
   EXPECT_EQ(sys.guarded_failures(), 2);
 }
+
+TEST(GuardedSystem, NegativeInternalEnergyAndNonPositiveDensityAreNonPhysical) {
+  StateLayout L(3);
+  L.add(Field::Position, 2).add(Field::Density, 1).add(Field::InternalEnergy, 1);
+  std::vector<Real> y(L.size(), 1.0);
+  EXPECT_TRUE(nonphysical_entries(L, y.data()).empty());
+  y[L.offset(Field::InternalEnergy) + 0] = 0;      // u = 0: allowed (cold gas)
+  y[L.offset(Field::InternalEnergy) + 2] = -1e-300;  // u < 0: not
+  y[L.offset(Field::Density) + 1] = 0;             // rho = 0: not
+  const std::vector<std::size_t> bad = nonphysical_entries(L, y.data());
+  EXPECT_EQ(bad, (std::vector<std::size_t>{L.offset(Field::Density) + 1, L.offset(Field::InternalEnergy) + 2}));
+  EXPECT_EQ(describe_entries(L, bad), "density of particle 1; internal_energy of particle 2");
+}

@@ -11,10 +11,16 @@
 namespace sphark {
 
 // Writes `contents` to `path` so that `path` is either absent/unchanged or complete: the bytes
-// go to a temporary file in the same directory, which is then std::filesystem::rename()d onto
-// `path`. Throws std::runtime_error (naming the path and the reason) on failure and removes the
+// go to a temporary file in the same directory, which is fsync()ed and then rename()d onto
+// `path`; then the directory is fsync()ed, so the new file also survives a crash of the machine.
+// Throws std::runtime_error (naming the path and the reason) on failure and removes the
 // temporary file.
 void write_file_atomically(const std::filesystem::path& path, const std::string& contents);
+
+// The last two steps of an atomic write for files written by other code (VTK, scripts): fsync
+// `tmp`, rename it onto `path`, fsync the directory. std::runtime_error on failure (the
+// temporary file is removed).
+void commit_temporary(const std::filesystem::path& tmp, const std::filesystem::path& path);
 
 // Temporary name used by the atomic writers: ".<name>.tmp.<pid>" in the same directory.
 std::filesystem::path temporary_sibling(const std::filesystem::path& path);

@@ -18,15 +18,18 @@ namespace sphark {
 std::string describe_entries(const StateLayout& layout, const std::vector<std::size_t>& entries,
                              std::size_t max_named = 5);
 
-// Entries of y that are non-finite, or whose density is not positive (if the layout has a
-// density), ascending.
+// Entries of y that are non-finite, or non-physical: a density that is not positive, a negative
+// internal energy (for the fields the layout has); ascending. (Smoothing lengths are not in y: a
+// scheme that solves h in its RHS reports a failed or runaway h iteration itself, as a
+// recoverable failure; SPMHD does.)
 std::vector<std::size_t> nonphysical_entries(const StateLayout& layout, const Real* y);
 
 class GuardedSystem final : public OdeSystem {
  public:
   GuardedSystem(OdeSystem& inner, const StateLayout& layout) : inner_(inner), layout_(layout) {}
 
-  // From time t on, rhs() puts a NaN into the velocity derivative of particle 0 (testing aid).
+  // From time t on, rhs() puts a NaN into the velocity derivative of particle 0, or into the
+  // first entry of the derivative if there is no velocity field (testing aid).
   void inject_nan_from(Real t) { inject_from_ = t; }
 
   std::size_t size() const override { return inner_.size(); }

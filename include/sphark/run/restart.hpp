@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "sphark/cli/options.hpp"
+#include "sphark/core/types.hpp"
+#include "sphark/run/checkpoint.hpp"
+
 namespace sphark {
 
 // The value of `name` in argv[1..argc) ("--name value" or "--name=value"; the last occurrence),
@@ -24,5 +28,41 @@ std::vector<std::string> restart_arguments(const std::string& program, const std
 
 // Pointers into `args` for an argc/argv-style parser (valid while `args` lives).
 std::vector<const char*> as_argv(const std::vector<std::string>& args);
+
+// ---- --restart in an example's main() ------------------------------------------------------
+
+// The run-control options of a time-integrating example.
+struct RunControlOptions {
+  Real checkpoint_every = 0;      // --checkpoint-every T (0: only on failure or a stop signal)
+  std::filesystem::path restart;  // --restart FILE (the file itself: load_restart_option, before parsing)
+  Real inject_nan_at = 0;         // --inject-nan-at T (testing aid; 0 = never)
+};
+// Registers --checkpoint-every (its help says the checkpoint goes to `where`), --restart and
+// --inject-nan-at.
+void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
+// After parsing: --output-every and --checkpoint-every must not exceed --t-end (p.fail, exit 2).
+void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core);
+
+// The checkpoint named by --restart (nullopt without the option), loaded before anything is
+// parsed or written. A missing value, an unreadable or corrupt file or one written by another
+// program: one line "<program>: --restart: ..." and exit 2.
+std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program);
+
+// This run's argument list, [program] first: on a restart the checkpoint's stored options, then
+// the ones given now (which override them), without --restart itself.
+std::vector<std::string> run_arguments(const std::string& program, int argc, const char* const* argv,
+                                       const Checkpoint* restart);
+
+// "key=value\n" with the shortest text that reads back exactly (for checkpoint texts such as the
+// scene parameters, which a restart must not change).
+void append_key_value(std::string& text, const std::string& key, Real value);
+void append_key_value(std::string& text, const std::string& key, const std::string& value);
+
+// Checks of a restart against the checkpoint, each failing as p.fail(option, ...) (exit 2):
+// the "key=value" text `stored_name` must equal `now` ("--restart: <what> cannot change on
+// restart: checkpoint has k=v, this run k=w"), and t_end must lie after the checkpoint time.
+void check_restart_text(const OptionParser& p, const Checkpoint& c, const std::string& stored_name,
+                        const std::string& now, const std::string& what);
+void check_restart_t_end(const OptionParser& p, const Checkpoint& c, Real t_end);
 
 }  // namespace sphark

@@ -1,0 +1,106 @@
+#pragma once
+// The run driver shared by every time-integrating example: integrate an OdeSystem from an initial
+// state (or a checkpoint) to t_end, sampling diagnostics on a fixed time grid, writing VTK frames,
+// checkpoints and the diagnostics CSV atomically, polling SIGINT/SIGTERM, reporting progress and
+// (with --profile) the wall-time split; on a blow-up it writes the last good state (VTK frame +
+// checkpoint) and says why, when and for which particles.
+//
+//   TimeLoopSettings s;  s.program = "my_scene"; s.run = "main"; s.t_end = ...; s.sample_every = ...;
+//   s.diagnostics_csv = dir / "diagnostics.csv";  s.columns = {"t", "energy", ...};
+//   s.frames_dir = dir;  s.frames_basename = "my_scene";  s.frame_every = ...;
+//   s.checkpoint = dir / "checkpoint.bin";  s.checkpoint_every = ...;  s.restart = ckpt_or_null;
+//   TimeLoopHooks h;
+//   h.diagnostics = [&](Real t, const Real* y, const StepperStats&) { return std::vector<Real>{t, ...}; };
+//   h.frame = [&](Real t, const Real* y) { ...; return ParticleFrame{...}; };   // arrays live in buffers you own
+//   const TimeLoopResult r = run_time_loop(system, layout, stepper_options, y0, s, h);
+//   return report_time_loop_end(r);  // prints the outcome; 0 ok, 3 failed, 128 + signal when stopped
+//
+// The diagnostics row is taken at t = 0 (not on a restart) and after every advance() to the next
+// grid time k * sample_every (t_end is snapped onto the grid when it is a multiple of it, so runs
+// to t1 < t2 pass bit-identical times); frames are written at t = 0, every frame_every and at the
+// end. Everything a restart needs (the state, the stepper's resume data, the step size, the
+// counts, the grid position, the CSV rows, the frame list, the caller's `state` scalars and
+// `texts`) goes into the checkpoint; a restart continues bit for bit with the leapfrog and any
+// fixed-step method whenever the system's rhs depends on y alone.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sphark/integrate/ode_system.hpp"
+#include "sphark/integrate/stepper_options.hpp"
+#include "sphark/io/particle_frame.hpp"
+#include "sphark/run/checkpoint.hpp"
+#include "sphark/state/state_layout.hpp"
+
+namespace sphark {
+
+struct TimeLoopSettings {
+  std::string program;                  // "water_drop": checkpoint owner and message prefix
+  std::string run = "run";              // which run / variant (checkpoint text "run")
+  std::vector<std::string> argv;        // this run's options, stored in the checkpoint
+  std::vector<std::pair<std::string, std::string>> texts;  // extra checkpoint texts (e.g. "scene")
+  Real t_end = 1;
+  Real sample_every = 0;                // diagnostics grid (> 0 required)
+  std::filesystem::path diagnostics_csv;  // written atomically at every frame, checkpoint and end
+  std::vector<std::string> columns;     // its header
+  std::filesystem::path frames_dir;     // "" : no VTK frames
+  std::string frames_basename;          // <frames_dir>/<basename>_NNNNN.vtp + <basename>.pvd
+  Real frame_every = 0;                 // 0: first and last only
+  std::filesystem::path checkpoint;     // written on failure / signal, and every checkpoint_every
+  Real checkpoint_every = 0;            // > 0: also at the end
+  const Checkpoint* restart = nullptr;  // continue from this checkpoint (checked by the caller)
+  Real inject_nan_at = 0;               // > 0: testing aid, the RHS turns non-finite from then on
+  // Steps below min_dt_fraction x min(initial stable step, sample_every) end the run as a failure
+  // (unless StepperOptions::min_dt is set).
+  Real min_dt_fraction = 1e-6;
+  bool quiet = false;                   // no progress lines
+  double progress_interval = 2;         // seconds between progress lines
+};
+
+struct TimeLoopHooks {
+  // The diagnostics row at (t, y) (columns as TimeLoopSettings::columns); `total` counts every
+  // step and rhs evaluation since t = 0 (across restarts). Called at every grid time, and at the
+  // last good state of a failed run (before its frame). Required.
+  std::function<std::vector<Real>(Real t, const Real* y, const StepperStats& total)> diagnostics;
+  // The VTK frame of (t, y), called right after diagnostics() at the same (t, y); its arrays must
+  // stay valid until the next call. Required if frames_dir is set.
+  std::function<ParticleFrame(Real t, const Real* y)> frame;
+  // Optional: true ends the run early but normally after the sample at t (e.g. a blow-up the scene
+  // measures, like the non-conservative cleaning's growth).
+  std::function<bool(Real t)> finished;
+  // Named run-loop numbers saved in checkpoints and restored on restart (bound by pointer).
+  std::vector<std::pair<std::string, Real*>> state;
+};
+
+enum class TimeLoopStatus { Reached, EndedEarly, Failed, Stopped };
+
+struct TimeLoopResult {
+  std::string program, run;
+  TimeLoopStatus status = TimeLoopStatus::Reached;
+  std::string failure;               // why the stepper gave up (Failed)
+  int signal = 0;                    // SIGINT / SIGTERM (Stopped)
+  Real t_reached = 0;
+  std::filesystem::path checkpoint;  // last checkpoint written ("" if none)
+  std::filesystem::path last_frame;  // last VTK frame written ("" if none)
+  std::string diagnostics;           // the CSV text (header + every row since t = 0)
+  StepperStats stats;                // totals since t = 0
+  double wall_seconds = 0;           // of this process's part of the run
+  bool ok() const { return status == TimeLoopStatus::Reached || status == TimeLoopStatus::EndedEarly; }
+};
+
+// Runs the loop above. Throws std::runtime_error for a checkpoint that does not fit (layout,
+// missing entries) and for output files that cannot be written.
+TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, StepperOptions options,
+                             std::vector<Real> y0, const TimeLoopSettings& settings, const TimeLoopHooks& hooks);
+
+// Prints the outcome of a failed or stopped run to stderr (reason, time, particles, where the
+// last good state is, how to continue) and returns the exit code: 0 (ok), 3 (failed),
+// 128 + signal (stopped).
+int report_time_loop_end(const TimeLoopResult& r);
+
+// One column of a CSV text as numbers (std::runtime_error if the column is missing).
+std::vector<Real> csv_column(const std::string& csv_text, const std::string& column);
+
+}  // namespace sphark
