@@ -17,13 +17,6 @@
 using namespace sphark;
 
 namespace {
-std::vector<std::string> stepper_names() {
-  auto names = erk_table_names();
-  names.push_back("ark-imex");
-  names.push_back("leapfrog");
-  return names;
-}
-
 void print_summary(const std::string& label, const DropRunSummary& s) {
   std::printf("%-9s %s t=%.4g  particles %zu  wall %.1f s  %s\n", label.c_str(), s.loop.ok() ? "ok    " : "FAILED",
               s.loop.t_reached, s.particles, s.loop.wall_seconds, format_stats(s.loop.stats).c_str());
@@ -52,7 +45,7 @@ int main(int argc, char** argv) {
   std::string initial_pressure = "exact";
 
   OptionParser p("water_drop", "oscillating elliptic water drop (seed 000 §IV-D): WCSPH with/without velocity cleaning");
-  add_core_options(p, base.core, stepper_names());
+  add_core_options(p, base.core);
   p.add("--cleaning", &cleaning, "constrained velocity cleaning: on, off, or both (cleaned + control runs)",
         OneOf{{"on", "off", "both"}});
   p.add("--amplitude", &sc.amplitude, "A of the initial velocity v = (-A x, A y)", NonNegative{});
