@@ -164,5 +164,25 @@ TEST(SpmhdDensity, UniformLatticeDensityIsUniform) {
   EXPECT_NEAR(*lo, 1.0, 1e-2);
 }
 
+TEST(SpmhdDensity, SolveDensityReportsARootBeyondTheListRadius) {
+  // operators/solve_density with lists too short for the true h: the iterate converges onto
+  // h_list from below (to within the tolerance), which must be counted as outside the lists
+  // (it was missed when only h >= h_list (1 - 1e-12) counted, so callers did not rebuild).
+  ParticleSet2D p = hexagonal_lattice_unit_box(32, hexagonal_rows(32), 1.0);
+  const std::size_t n = p.size();
+  NeighbourSearch<2> ns(unit_periodic_box());
+  const Real dx = 1.0 / 32, h_true = 1.2 * dx, tol = 1e-10;
+  for (Real h_list : {0.8 * h_true, 1.5 * h_true}) {
+    ns.build(p.x.data(), n, 2 * h_list);
+    std::vector<Real> h(n, 0.5 * dx), rho(n), omega(n);  // a guess below both
+    const DensitySolveStats st = solve_density<2, CubicSpline<2>>(ns, p.x.data(), p.m.data(), n, 1.2, tol, h_list,
+                                                                   h.data(), rho.data(), omega.data());
+    if (h_list < h_true)
+      EXPECT_EQ(st.outside_list, n) << "h_list " << h_list;
+    else
+      EXPECT_EQ(st.outside_list, 0u) << "h_list " << h_list;
+  }
+}
+
 }  // namespace
 }  // namespace sphark

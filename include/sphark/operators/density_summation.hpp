@@ -83,7 +83,9 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
       hh = h_new;
     }
     if (!converged) ++not_converged;
-    if (hh >= h_list * (1 - 1e-12)) ++outside;
+    // A root beyond h_list makes the Newton/bisection iterate converge onto h_list from below
+    // (to within tol); count that as outside the lists so the caller rebuilds them.
+    if (hh >= h_list * (1 - 10 * tol)) ++outside;
     Real dr;
     density_sum<D, K>(ns, x, m, i, hh, r, dr);
     h[i] = hh;
