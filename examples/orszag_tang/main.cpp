@@ -22,14 +22,21 @@ namespace {
 
 const std::vector<std::string> kVariants = {"none", "resistivity", "euler", "cleaning", "cleaning+resistivity"};
 
-SpmhdOptions variant_options(const std::string& v, Real sigma, Real alpha_b) {
+// Settings shared by every variant (the Courant number) and those of the variants that use them.
+struct Settings {
+  Real sigma = 0.3, alpha_b = 1.0, overclean = 1.0, courant = 0.3;
+};
+
+SpmhdOptions variant_options(const std::string& v, const Settings& set) {
   SpmhdOptions o;
   o.gamma = 5.0 / 3.0;
-  if (v == "resistivity" || v == "cleaning+resistivity") o.alpha_b = alpha_b;
+  o.courant = set.courant;
+  if (v == "resistivity" || v == "cleaning+resistivity") o.alpha_b = set.alpha_b;
   if (v == "euler") o.field = FieldRepresentation::EulerPotentials;
   if (v == "cleaning" || v == "cleaning+resistivity") {
     o.cleaning = Cleaning::Constrained;
-    o.sigma = sigma;
+    o.sigma = set.sigma;
+    o.overclean = set.overclean;
   }
   return o;
 }
@@ -44,12 +51,12 @@ struct RunSummary {
   bool failed = false;
 };
 
-RunSummary run(const std::string& variant, const CoreOptions& core, int nx, Real sigma, Real alpha_b) {
+RunSummary run(const std::string& variant, const CoreOptions& core, int nx, const Settings& set) {
   const std::filesystem::path dir = core.out / dir_name(variant);
   prepare_output_dir(dir, "orszag_tang");
   const int ny = hexagonal_rows(nx);
   const ParticleSet2D p = hexagonal_lattice_unit_box(nx, ny, kOrszagTangRho);
-  SpmhdOptions o = variant_options(variant, sigma, alpha_b);
+  SpmhdOptions o = variant_options(variant, set);
   o.h_initial = o.eta * std::sqrt(1.0 / (static_cast<Real>(nx) * ny));
   SpmhdScheme<2> scheme(p.m, o, unit_periodic_box());
   std::vector<Real> y(scheme.size(), 0);
@@ -134,7 +141,7 @@ int main(int argc, char** argv) {
   core.atol = 1e-6;
   int nx = 128;
   std::string variant = "all";
-  Real sigma = 0.3, alpha_b = 1.0;
+  Settings set;
   OptionParser parser("orszag_tang",
                       "Orszag-Tang vortex (seed 000 §IV-B, Figs. 2-3): div B control by resistivity, Euler potentials "
                       "and constrained hyperbolic/parabolic cleaning");
@@ -147,8 +154,12 @@ int main(int argc, char** argv) {
   std::vector<std::string> allowed = kVariants;
   allowed.push_back("all");
   parser.add("--variant", &variant, "div B control (all: the five in turn)", OneOf{allowed});
-  parser.add("--sigma", &sigma, "cleaning damping, 1/tau = sigma c_h / h", NonNegative{});
-  parser.add("--alpha-b", &alpha_b, "artificial resistivity strength of the resistivity variants", Positive{});
+  parser.add("--sigma", &set.sigma, "cleaning damping, 1/tau = sigma c_h / h", NonNegative{});
+  parser.add("--alpha-b", &set.alpha_b, "artificial resistivity strength of the resistivity variants", Positive{});
+  parser.add("--overclean", &set.overclean, "cleaning speed c_h = overclean x max fast speed (cleaning variants)",
+             Range{1.0, 100.0});
+  parser.add("--courant", &set.courant, "Courant number C of dt = C h / max(v_sig, c_h), every variant",
+             Range{0.01, 1.0});
   parser.parse_or_exit(argc, argv);
   apply_thread_count(core.threads);
   prepare_output_dir(core.out, parser.program());
@@ -156,7 +167,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> todo = variant == "all" ? kVariants : std::vector<std::string>{variant};
   std::vector<RunSummary> results;
   try {
-    for (const std::string& v : todo) results.push_back(run(v, core, nx, sigma, alpha_b));
+    for (const std::string& v : todo) results.push_back(run(v, core, nx, set));
   } catch (const std::invalid_argument& e) {
     exit_usage_error(parser.program(), "", e.what());
   }

@@ -3,6 +3,7 @@
 // damping dE/dt = -sum m psi^2/(rho c_h^2 tau) (eq. (24)); the previous form does not conserve E.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -21,7 +22,7 @@ struct DiscCase {
   SpmhdScheme<2> scheme;
   std::vector<Real> y, ydot;
 
-  DiscCase(Cleaning form, Real sigma) : scheme(p.m, options(form, sigma), std::nullopt, p.x) {
+  DiscCase(Cleaning form, Real sigma, Real overclean = 1) : scheme(p.m, options(form, sigma, overclean), std::nullopt, p.x) {
     y.assign(scheme.size(), 0);
     ydot.assign(scheme.size(), 0);
     disc_initial_field(scheme, p, y.data());
@@ -36,8 +37,9 @@ struct DiscCase {
     }
     EXPECT_EQ(scheme.rhs(0, y.data(), ydot.data()), 0) << scheme.last_error();
   }
-  static SpmhdOptions options(Cleaning form, Real sigma) {
+  static SpmhdOptions options(Cleaning form, Real sigma, Real overclean) {
     SpmhdOptions o;
+    o.overclean = overclean;
     o.evolve_particles = false;
     o.cleaning = form;
     o.sigma = sigma;
@@ -84,6 +86,34 @@ TEST(SpmhdCleaning, ConstrainedWithDampingOnlyDissipates) {
     expected -= c.p.m[a] * psi(a) * psi(a) / (c.scheme.rho()[a] * ch * ch) * (0.3 * ch / c.scheme.h()[a]);
   EXPECT_LT(e.rate, 0);
   EXPECT_NEAR(e.rate, expected, 1e-14 * e.scale);
+}
+
+// Overcleaning (c_h = f x the base speed, Tricco, Price & Bate 2016; Phantom's overcleanfac): the
+// cleaning speed is exactly f times the base, the energy with the overcleaned c_h is still conserved
+// to round-off without damping, and with damping dE/dt is eq. (24) with 1/tau = sigma f c_h / h.
+TEST(SpmhdCleaning, OvercleaningKeepsEnergyConservationAndScalesTheSpeed) {
+  DiscCase c(Cleaning::Constrained, 0.0, 4.0);
+  EXPECT_EQ(c.scheme.cleaning_speed(), 4.0);  // fixed_ch = 1, overclean = 4
+  const EnergyRate e = c.energy_rate();
+  ASSERT_GT(e.scale, 0);
+  EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;
+
+  DiscCase d(Cleaning::Constrained, 0.3, 4.0);
+  const EnergyRate ed = d.energy_rate();
+  auto psi = scalar_field(d.y.data(), d.scheme.layout(), Field::Psi);
+  Real expected = 0;
+  for (std::size_t a = 0; a < d.p.size(); ++a)
+    expected -= d.p.m[a] * psi(a) * psi(a) / (d.scheme.rho()[a] * 16.0) * (0.3 * 4.0 / d.scheme.h()[a]);
+  EXPECT_NEAR(ed.rate, expected, 1e-14 * ed.scale);
+  // The time step respects the overcleaned speed: C h_min / c_h (fixed particles: no v term).
+  const Real hmin = *std::min_element(d.scheme.h().begin(), d.scheme.h().end());
+  EXPECT_DOUBLE_EQ(d.scheme.max_stable_dt(0, d.y.data()), d.scheme.options().courant * hmin / 4.0);
+}
+
+TEST(SpmhdCleaning, OvercleanBelowOneIsRejected) {
+  const ParticleSet2D p = disc_square_lattice(1.0, 0.04, 1.0);
+  SpmhdOptions o = DiscCase::options(Cleaning::Constrained, 0.3, 0.5);
+  EXPECT_THROW(SpmhdScheme<2>(p.m, o, std::nullopt, p.x), std::invalid_argument);
 }
 
 TEST(SpmhdCleaning, NonConservativeFormDoesNotConserveEnergy) {

@@ -33,6 +33,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   if (!(opt_.gamma > 1)) throw std::invalid_argument("SpmhdScheme: gamma must be > 1");
   if (!(opt_.eta > 0)) throw std::invalid_argument("SpmhdScheme: eta must be > 0");
   if (opt_.sigma < 0) throw std::invalid_argument("SpmhdScheme: sigma must be >= 0");
+  if (!(opt_.overclean >= 1)) throw std::invalid_argument("SpmhdScheme: overclean must be >= 1");
   if (opt_.evolve_particles) {
     layout_.add(Field::Position, D).add(Field::Velocity, D).add(Field::InternalEnergy, 1);
     if (opt_.field == FieldRepresentation::MagneticField) {
@@ -168,7 +169,7 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     cf_[a] = std::sqrt(cs_[a] * cs_[a] + b2 / rho_[a]);  // fast magnetosonic speed (upper bound)
     cmax = std::max(cmax, cf_[a]);
   }
-  ch_ = opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax;
+  ch_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
   if (!std::isfinite(ch_)) {
     error_ = "non-finite wave speed";
     return 1;
