@@ -8,6 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sphark/core/profile.hpp"
+
 namespace sphark::detail {
 namespace {
 
@@ -116,6 +118,7 @@ bool ArkodeStepper::recover(int& consecutive) {
 }
 
 AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
+  ScopedPhase timer(Phase::Advance);
   const std::size_t n = system_.size();
   roots_.clear();
   if (t_out < t_last_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_last_));

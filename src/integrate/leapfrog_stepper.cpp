@@ -12,6 +12,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sphark/core/profile.hpp"
 #include "steppers.hpp"
 
 namespace sphark::detail {
@@ -41,6 +42,7 @@ class LeapfrogStepper final : public Stepper {
   }
 
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
+    ScopedPhase timer(Phase::Advance);
     roots_.clear();
     if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
     if (!failed_ && !started_) start();

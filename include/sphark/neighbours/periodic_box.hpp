@@ -7,6 +7,14 @@
 
 namespace sphark {
 
+// Round to the nearest integer (ties to even), equal to std::nearbyint in the default rounding
+// mode for |x| < 2^51. Without SSE4.1 std::nearbyint is a libm call; this is two additions
+// (x + 1.5 * 2^52 lies where the spacing of doubles is 1). Not folded away without -ffast-math.
+inline Real round_to_nearest(Real x) {
+  constexpr Real kShift = 6755399441055744.0;  // 1.5 * 2^52
+  return (x + kShift) - kShift;
+}
+
 template <int D>
 struct PeriodicBox {
   Vec<D> lo = Vec<D>::Zero();
@@ -20,7 +28,7 @@ struct PeriodicBox {
     for (int k = 0; k < D; ++k) {
       if (!periodic[k]) continue;
       const Real L = hi[k] - lo[k];
-      d[k] -= L * std::nearbyint(d[k] / L);
+      d[k] -= L * round_to_nearest(d[k] / L);
     }
     return d;
   }

@@ -5,7 +5,7 @@
 #include <exception>
 #include <stdexcept>
 
-#include "sphark/operators/density_summation.hpp"
+#include "sphark/core/profile.hpp"
 
 namespace sphark {
 
@@ -67,6 +67,12 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
   scratch_.assign(layout_.size(), 0);
+  hinv_.assign(n_, 0);
+  fscale_.assign(n_, 0);
+  o_.assign(n_, 0);
+  oM_.assign(D * D * n_, 0);
+  oB_.assign(3 * n_, 0);
+  opsi_.assign(n_, 0);
 }
 
 template <int D, class K>
@@ -76,43 +82,6 @@ std::size_t SpmhdScheme<D, K>::position_offset() const {
 template <int D, class K>
 std::size_t SpmhdScheme<D, K>::velocity_offset() const {
   return opt_.evolve_particles ? layout_.offset(Field::Velocity) : 0;
-}
-
-// Verlet lists built with radius R = support * h_est * (1 + skin). A pair closer than
-// support * h now was closer than support * h + 2 * disp at the build, so the lists serve every
-// h <= (R - 2 disp) / support. The density solve reports particles that need more; then rebuild.
-template <int D, class K>
-void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
-  if (h_[0] <= 0) {
-    Vec<D> lo = Eigen::Map<const Vec<D>>(x), hi = lo;
-    for (std::size_t i = 1; i < n_; ++i) {
-      lo = lo.cwiseMin(Eigen::Map<const Vec<D>>(x + D * i));
-      hi = hi.cwiseMax(Eigen::Map<const Vec<D>>(x + D * i));
-    }
-    const Real volume = (hi - lo).prod();
-    std::fill(h_.begin(), h_.end(), opt_.eta * std::pow(volume / static_cast<Real>(n_), 1.0 / D));
-  }
-  Real h_est = *std::max_element(h_.begin(), h_.end());
-  for (int attempt = 0; attempt < 8; ++attempt) {
-    Real cap = 0;
-    if (built_) {
-      const Real disp = opt_.evolve_particles ? ns_.max_displacement_since_build(x) : 0;
-      cap = (ns_.radius() - 2 * disp) / K::support;
-    }
-    if (!built_ || cap < h_est) {
-      ns_.build(x, n_, K::support * h_est * (1 + opt_.skin));
-      built_ = true;
-      cap = ns_.radius() / K::support;
-    }
-    const DensitySolveStats st = solve_density<D, K>(ns_, x, m_.data(), n_, opt_.eta, opt_.h_tolerance, cap,
-                                                     h_.data(), rho_.data(), omega_.data());
-    if (st.outside_list == 0) {
-      if (st.not_converged > 0) throw std::runtime_error("density: h iteration did not converge");
-      return;
-    }
-    h_est = std::max(st.h_max, cap) * 1.5;
-  }
-  throw std::runtime_error("density: smoothing lengths keep growing beyond the neighbour lists");
 }
 
 // Euler potentials in 2D (beta = z): B = grad alpha x z_hat = (d_y alpha, -d_x alpha, 0), with the
@@ -157,6 +126,7 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     const Real* B = y + layout_.offset(Field::MagneticField);
     std::copy(B, B + 3 * n_, B_.begin());
   } else {
+    ScopedPhase timer(Phase::Forces);
     euler_potential_field(x, y + layout_.offset(Field::EulerAlpha));
   }
   const Real* u = opt_.evolve_particles ? y + layout_.offset(Field::InternalEnergy) : nullptr;
@@ -180,6 +150,7 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
 template <int D, class K>
 int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
   ++rhs_calls_;
+  ScopedPhase timer(Phase::Rhs);
   try {
     if (const int rc = prepare(y); rc != 0) return rc;
     force_pass(y, ydot);
@@ -192,8 +163,10 @@ int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
 
 template <int D, class K>
 int SpmhdScheme<D, K>::evaluate(Real t, const Real* y) noexcept {
+  const double pairs_before = pairs_total_;
   const int rc = rhs(t, y, scratch_.data());
   --rhs_calls_;  // diagnostics are not counted as integrator work
+  pairs_total_ = pairs_before;
   return rc;
 }
 
@@ -230,5 +203,6 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
 }
 
 template class SpmhdScheme<2, CubicSpline<2>>;
+template class SpmhdScheme<3, CubicSpline<3>>;
 
 }  // namespace sphark

@@ -8,8 +8,9 @@
 // -psi/tau is the stiff diagonal c = sigma c_h / h_a on the psi entries.
 //
 // The RHS is gather-form (each particle sums its own neighbours; OpenMP over particles, no
-// races, deterministic), and allocates nothing after the first call except when the Verlet
-// lists must be rebuilt.
+// races, results independent of the thread count), and allocates nothing after the first call
+// except when the Verlet lists must be rebuilt. Per-particle quantities of the pair loops are
+// kept as structure-of-arrays, filled once per RHS (prepare()).
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,15 @@ class SpmhdScheme final : public OdeSystem {
 
   // Number of RHS evaluations so far.
   long rhs_evaluations() const { return rhs_calls_; }
+  // Number of neighbour-list builds so far (Verlet reuse: far fewer than RHS evaluations).
+  long neighbour_builds() const { return builds_; }
+  // The current neighbour lists (pairs within K::support * h (1 + skin) at the last build).
+  const NeighbourSearch<D>& neighbours() const { return ns_; }
+  // Pairs a-b (ordered, a != b) with |x_a - x_b| < K::support * max(h_a, h_b) at the last RHS:
+  // the pair interactions the force loop evaluated.
+  std::size_t interacting_pairs() const { return interacting_pairs_; }
+  // Sum of interacting_pairs() over all RHS evaluations so far.
+  double pair_interactions_total() const { return pairs_total_; }
 
   // Per-particle quantities of the most recent rhs() (or evaluate()).
   const std::vector<Real>& h() const { return h_; }
@@ -64,8 +74,15 @@ class SpmhdScheme final : public OdeSystem {
 
  private:
   int prepare(const Real* y);                      // neighbours, density, P, c, B, c_h
-  void ensure_neighbours_and_density(const Real* x);
+  void ensure_neighbours_and_density(const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
+  void build_neighbours(const Real* x, Real radius);
+  struct DensityStats {
+    std::size_t not_converged = 0, outside_list = 0;
+    Real h_max = 0;
+  };
+  DensityStats solve_density(const Real* x, Real h_list);
   void euler_potential_field(const Real* x, const Real* alpha);
+  void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
 
   std::size_t n_;
@@ -77,8 +94,16 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> x_;  // fixed positions, or a copy of the current ones
   std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, B_, divB_, divv_;
   std::vector<Real> scratch_;
+  // Pair-loop arrays (SoA): 1/h, 1/h^(D+2) (kernel gradient scale), o = 1/(Omega rho^2),
+  // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
+  std::vector<Real> hinv_, fscale_, o_, oM_, oB_, opsi_;
+  std::vector<Real> cand_;          // per-thread candidate (r^2, r, m) of the density solve
+  std::size_t max_list_ = 0;        // longest neighbour list of the current build
+  std::size_t interacting_pairs_ = 0;
+  double pairs_total_ = 0;
   Real ch_ = 0;
   long rhs_calls_ = 0;
+  long builds_ = 0;
   std::string error_;
 };
 
