@@ -25,6 +25,7 @@ const std::vector<std::string> kVariants = {"none", "resistivity", "euler", "cle
 // Settings shared by every variant (the Courant number) and those of the variants that use them.
 struct Settings {
   Real sigma = 0.3, alpha_b = 1.0, overclean = 1.0, courant = 0.3;
+  bool local_ch = false;
 };
 
 SpmhdOptions variant_options(const std::string& v, const Settings& set) {
@@ -37,6 +38,7 @@ SpmhdOptions variant_options(const std::string& v, const Settings& set) {
     o.cleaning = Cleaning::Constrained;
     o.sigma = set.sigma;
     o.overclean = set.overclean;
+    o.local_ch = set.local_ch;
   }
   return o;
 }
@@ -158,6 +160,8 @@ int main(int argc, char** argv) {
   parser.add("--alpha-b", &set.alpha_b, "artificial resistivity strength of the resistivity variants", Positive{});
   parser.add("--overclean", &set.overclean, "cleaning speed c_h = overclean x max fast speed (cleaning variants)",
              Range{1.0, 100.0});
+  parser.add_flag("--local-ch", &set.local_ch,
+                  "per-particle c_h = overclean x own fast speed, psi/c_h evolved (Tricco, Price & Bate 2016)");
   parser.add("--courant", &set.courant, "Courant number C of dt = C h / max(v_sig, c_h), every variant",
              Range{0.01, 1.0});
   parser.parse_or_exit(argc, argv);

@@ -63,6 +63,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   P_.assign(n_, 0);
   cs_.assign(n_, 0);
   cf_.assign(n_, 0);
+  chs_.assign(n_, 0);
   B_.assign(3 * n_, 0);
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
@@ -140,6 +141,8 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     cmax = std::max(cmax, cf_[a]);
   }
   ch_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
+  for (std::size_t a = 0; a < n_; ++a)
+    chs_[a] = opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cf_[a]) : ch_;
   if (!std::isfinite(ch_)) {
     error_ = "non-finite wave speed";
     return 1;
@@ -181,7 +184,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexce
   std::fill(c, c + layout_.size(), 0.0);
   if (!has_stiff_diagonal()) return 0;
   Real* cpsi = c + layout_.offset(Field::Psi);
-  for (std::size_t a = 0; a < n_; ++a) cpsi[a] = opt_.sigma * ch_ / h_[a];  // 1/tau_a
+  for (std::size_t a = 0; a < n_; ++a) cpsi[a] = opt_.sigma * chs_[a] / h_[a];  // 1/tau_a
   return 0;
 }
 
@@ -195,7 +198,7 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
   const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t a = 0; a < n_; ++a) {
-    Real vsig = std::max(ch_, cf_[a]);
+    Real vsig = std::max(chs_[a], cf_[a]);
     if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * a).norm();
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
   }

@@ -67,7 +67,8 @@ class SpmhdScheme final : public OdeSystem {
   const std::vector<Real>& div_v() const { return divv_; }       // continuity form, eq. (25)
   const std::vector<Real>& magnetic_field() const { return B_; }  // 3 x N (from state or potentials)
   const std::vector<Real>& positions() const { return x_; }       // D x N (fixed, or last state)
-  Real cleaning_speed() const { return ch_; }
+  Real cleaning_speed() const { return ch_; }                       // global c_h (the largest if local_ch)
+  const std::vector<Real>& cleaning_speeds() const { return chs_; }  // c_h,a per particle
 
   // rhs() into an internal buffer, to refresh the per-particle quantities above.
   int evaluate(Real t, const Real* y) noexcept;
@@ -92,7 +93,7 @@ class SpmhdScheme final : public OdeSystem {
   NeighbourSearch<D> ns_;
   bool built_ = false;
   std::vector<Real> x_;  // fixed positions, or a copy of the current ones
-  std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, B_, divB_, divv_;
+  std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, chs_, B_, divB_, divv_;
   std::vector<Real> scratch_;
   // Pair-loop arrays (SoA): 1/h, 1/h^(D+2) (kernel gradient scale), o = 1/(Omega rho^2),
   // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
