@@ -1,40 +1,14 @@
 #include "sphark/neighbours/neighbour_search.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include <nanoflann.hpp>
-
 namespace sphark {
-
-namespace {
-// nanoflann dataset adaptor over a flat array of D-vectors.
-template <int D>
-struct PointCloud {
-  const std::vector<Real>* pts = nullptr;
-  std::size_t kdtree_get_point_count() const { return pts->size() / D; }
-  Real kdtree_get_pt(std::size_t i, std::size_t k) const { return (*pts)[D * i + k]; }
-  template <class BBox>
-  bool kdtree_get_bbox(BBox&) const { return false; }
-};
-}  // namespace
-
-template <int D>
-struct NeighbourSearch<D>::Tree {
-  using Metric = nanoflann::L2_Simple_Adaptor<Real, PointCloud<D>>;
-  using KdTree = nanoflann::KDTreeSingleIndexAdaptor<Metric, PointCloud<D>, D, std::uint32_t>;
-  PointCloud<D> cloud;
-  KdTree index;
-  explicit Tree(const std::vector<Real>* pts)
-      : cloud{pts}, index(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
-
-  // The one place where radii become squared radii.
-  void within(const Real* p, Real radius, std::vector<std::pair<std::uint32_t, Real>>& hits) const {
-    index.radiusSearch(p, radius * radius, hits, nanoflann::SearchParams(32, 0.0f, false));
-  }
-};
 
 template <int D>
 NeighbourSearch<D>::NeighbourSearch(std::optional<PeriodicBox<D>> box) : box_(std::move(box)) {}
@@ -45,18 +19,66 @@ NeighbourSearch<D>::NeighbourSearch(NeighbourSearch&&) noexcept = default;
 template <int D>
 NeighbourSearch<D>& NeighbourSearch<D>::operator=(NeighbourSearch&&) noexcept = default;
 
+// Cell grid over the box (periodic axes) or the bounding box (open axes): floor(extent / radius)
+// cells per axis (at least 1; fewer when the grid would have far more cells than particles),
+// so every cell side is >= radius. Counting sort by cell keeps particles ascending per cell.
 template <int D>
-void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
+void NeighbourSearch<D>::bin(std::size_t n, Real radius) {
+  Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
+  for (int k = 0; k < D; ++k) {
+    if (box_ && box_->periodic[k]) {
+      lo[k] = box_->lo[k];
+      hi[k] = box_->hi[k];
+      continue;
+    }
+    lo[k] = hi[k] = n > 0 ? points_[k] : 0;
+    for (std::size_t i = 1; i < n; ++i) {
+      lo[k] = std::min(lo[k], points_[D * i + k]);
+      hi[k] = std::max(hi[k], points_[D * i + k]);
+    }
+  }
+  double total = 1;
+  for (int k = 0; k < D; ++k) {
+    const Real extent = hi[k] - lo[k];
+    cells_[k] = extent > radius ? static_cast<std::size_t>(std::min(extent / radius, 1e6)) : 1;
+    total *= static_cast<double>(cells_[k]);
+  }
+  const double budget = 4.0 * static_cast<double>(n) + 64;  // sparse sets: coarser cells
+  if (total > budget) {
+    const double f = std::pow(total / budget, 1.0 / D);
+    for (int k = 0; k < D; ++k) cells_[k] = std::max<std::size_t>(1, static_cast<std::size_t>(cells_[k] / f));
+  }
+  std::size_t ncell = 1;
+  for (int k = 0; k < D; ++k) {
+    ncell *= cells_[k];
+    side_[k] = hi[k] > lo[k] ? (hi[k] - lo[k]) / static_cast<Real>(cells_[k]) : 1;
+  }
+  origin_ = lo;
+  cell_of_.resize(n);
+  cell_start_.assign(ncell + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t c = 0;
+    for (int k = D - 1; k >= 0; --k) {
+      const Real s = std::floor((points_[D * i + k] - origin_[k]) / side_[k]);
+      const std::size_t ck = s <= 0 ? 0 : std::min(cells_[k] - 1, static_cast<std::size_t>(s));
+      c = c * cells_[k] + ck;
+    }
+    cell_of_[i] = static_cast<std::uint32_t>(c);
+    ++cell_start_[c + 1];
+  }
+  for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_particles_.resize(n);
+  // fill with a running cursor per cell (cell_start_ shifted, then restored)
+  for (std::size_t i = 0; i < n; ++i) cell_particles_[cell_start_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t c = ncell; c > 0; --c) cell_start_[c] = cell_start_[c - 1];
+  cell_start_[0] = 0;
+}
+
+template <int D>
+void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key,
+                               const Real* radii) {
   if (!(radius > 0)) throw std::invalid_argument("NeighbourSearch::build: radius must be positive");
   if (n >= (std::size_t{1} << 31)) throw std::invalid_argument("NeighbourSearch::build: too many particles");
-  radius_ = radius;
-  n_ = n;
-  points_.assign(x, x + D * n);  // keeps capacity: images are appended below
-  image_owner_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) image_owner_[i] = static_cast<std::uint32_t>(i);
-
-  // Periodic images of the particles within `radius` of a periodic face (all face, edge and
-  // corner combinations), so that a plain Euclidean search finds minimum-image neighbours.
   if (box_) {
     const Vec<D> L = box_->length();
     for (int k = 0; k < D; ++k)
@@ -64,84 +86,147 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius) {
         throw std::invalid_argument("NeighbourSearch: periodic box length " + std::to_string(L[k]) + " along axis " +
                                     std::to_string(k) + " is shorter than twice the search radius " +
                                     std::to_string(radius));
-    std::vector<Real>& pts = points_;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec<D> xi = box_->wrap(Eigen::Map<const Vec<D>>(x + D * i));
-      Eigen::Map<Vec<D>>(pts.data() + D * i) = xi;
-      std::array<int, D> shifts_lo{}, shifts_hi{};
+  }
+  std::size_t capacity_before = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
+                                cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
+  for (const auto& t : thread_lists_) capacity_before += t.capacity();
+
+  radius_ = radius;
+  n_ = n;
+  points_.resize(D * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec<D> xi = Eigen::Map<const Vec<D>>(x + D * i);
+    Eigen::Map<Vec<D>>(points_.data() + D * i) = box_ ? box_->wrap(xi) : xi;
+  }
+  bin(n, radius);
+
+  const int max_threads = omp_get_max_threads();
+  if (thread_lists_.size() < static_cast<std::size_t>(max_threads)) thread_lists_.resize(max_threads);
+  list_.offsets.resize(n + 1);
+  list_.offsets[0] = 0;
+  const Real r2max = radius * radius;
+  const MinimumImage<D> image(box_);
+  if (radii) {
+    radius2_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) radius2_[i] = std::min(radii[i], radius) * std::min(radii[i], radius);
+  }
+  const Real* r2i = radii ? radius2_.data() : nullptr;
+  std::vector<std::uint32_t>* rows = thread_lists_.data();
+  int team = 1;
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+#pragma omp single
+    team = nt;
+    // Contiguous chunk per thread: the rows of a thread are consecutive in the final list.
+    const std::size_t first = n * t / nt, last = n * (t + 1) / nt;
+    std::vector<std::uint32_t>& out = rows[t];
+    out.clear();
+    for (std::size_t i = first; i < last; ++i) {
+      const std::size_t row_start = out.size();
+      // the distinct cells next to i's cell along each axis (wrapped when periodic)
+      std::array<std::array<std::size_t, 3>, D> near{};
+      std::array<int, D> count{};
+      std::size_t ci = cell_of_[i];
       for (int k = 0; k < D; ++k) {
-        shifts_lo[k] = shifts_hi[k] = 0;
-        if (!box_->periodic[k]) continue;
-        if (xi[k] - box_->lo[k] < radius) shifts_hi[k] = 1;   // image at x + L
-        if (box_->hi[k] - xi[k] < radius) shifts_lo[k] = -1;  // image at x - L
-      }
-      // enumerate every combination of shifts in {lo..hi} per axis except all-zero
-      std::array<int, D> s = shifts_lo;
-      while (true) {
-        bool zero = true;
-        for (int k = 0; k < D; ++k) zero = zero && s[k] == 0;
-        if (!zero) {
-          Vec<D> img = xi;
-          for (int k = 0; k < D; ++k) img[k] += s[k] * L[k];
-          for (int k = 0; k < D; ++k) pts.push_back(img[k]);
-          image_owner_.push_back(static_cast<std::uint32_t>(i));
+        const std::size_t c = ci % cells_[k], nc = cells_[k];
+        ci /= cells_[k];
+        const bool periodic = box_ && box_->periodic[k];
+        int m = 0;
+        if (periodic && nc <= 3) {
+          for (std::size_t j = 0; j < nc; ++j) near[k][m++] = j;
+        } else {
+          if (c > 0) near[k][m++] = c - 1; else if (periodic) near[k][m++] = nc - 1;
+          near[k][m++] = c;
+          if (c + 1 < nc) near[k][m++] = c + 1; else if (periodic) near[k][m++] = 0;
         }
+        count[k] = m;
+      }
+      std::array<int, D> idx{};
+      while (true) {
+        std::size_t cell = 0;
+        for (int k = D - 1; k >= 0; --k) cell = cell * cells_[k] + near[k][idx[k]];
+        // branch-free append: write every candidate, advance only for the hits
+        const std::uint32_t s0 = cell_start_[cell], s1 = cell_start_[cell + 1];
+        std::size_t pos = out.size();
+        out.resize(pos + (s1 - s0));
+        for (std::uint32_t s = s0; s < s1; ++s) {
+          const std::uint32_t j = cell_particles_[s];
+          const Real d2 = image(points_.data() + D * i, points_.data() + D * j).squaredNorm();
+          const Real reach2 = r2i ? std::max(r2i[i], r2i[j]) : r2max;
+          out[pos] = j;
+          pos += (d2 < reach2) & (j != i);
+        }
+        out.resize(pos);
         int k = 0;
         for (; k < D; ++k) {
-          if (s[k] < shifts_hi[k]) {
-            ++s[k];
-            break;
-          }
-          s[k] = shifts_lo[k];
+          if (++idx[k] < count[k]) break;
+          idx[k] = 0;
         }
         if (k == D) break;
       }
+      // ascending: a deterministic summation order
+      if (key)
+        std::sort(out.begin() + row_start, out.end(), [key](std::uint32_t p, std::uint32_t q) { return key[p] < key[q]; });
+      else
+        std::sort(out.begin() + row_start, out.end());
+      list_.offsets[i + 1] = out.size() - row_start;
     }
   }
-  if (!tree_) tree_ = std::make_unique<Tree>(&points_);
-  tree_->cloud.pts = &points_;  // this object may have been moved since the last build
-  tree_->index.buildIndex();
+  for (std::size_t i = 0; i < n; ++i) list_.offsets[i + 1] += list_.offsets[i];
+  const std::size_t pairs = list_.offsets[n];
+  if (pairs > list_.indices.capacity()) list_.indices.reserve(pairs + pairs / 8);  // headroom for later builds
+  list_.indices.resize(pairs);
+#pragma omp parallel for schedule(static, 1)
+  for (int t = 0; t < team; ++t)
+    std::copy(rows[t].begin(), rows[t].end(), list_.indices.begin() + list_.offsets[n * t / team]);
 
-  // Pass 1: count; pass 2: fill. Each particle's list is sorted, so output is deterministic.
-  list_.offsets.assign(n + 1, 0);
-  std::vector<std::vector<std::uint32_t>>& per_particle = scratch_;
-  if (per_particle.size() < n) per_particle.resize(n);
-#pragma omp parallel
-  {
-    std::vector<std::pair<std::uint32_t, Real>> hits;
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      tree_->within(points_.data() + D * i, radius, hits);
-      auto& out = per_particle[i];
-      out.clear();
-      out.reserve(hits.size());
-      for (const auto& h : hits) {
-        const std::uint32_t j = image_owner_[h.first];
-        if (j != i) out.push_back(j);
-      }
-      std::sort(out.begin(), out.end());
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) list_.offsets[i + 1] = list_.offsets[i] + per_particle[i].size();
-  list_.indices.resize(list_.offsets[n]);
+  std::size_t capacity_after = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
+                               cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
+  for (const auto& t : thread_lists_) capacity_after += t.capacity();
+  if (capacity_after != capacity_before) ++allocations_;
+}
+
+template <int D>
+void NeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order) {
+  const std::size_t n = n_;
+  if (order.size() != n) throw std::invalid_argument("NeighbourSearch::renumber: order must have one entry per particle");
+  inverse_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) inverse_[order[i]] = static_cast<std::uint32_t>(i);
+  swap_points_.resize(D * n);
+  swap_offsets_.resize(n + 1);
+  swap_u32_.resize(std::max(list_.indices.size(), n));
+  swap_offsets_[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) swap_offsets_[i + 1] = swap_offsets_[i] + list_.count(order[i]);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    std::copy(per_particle[i].begin(), per_particle[i].end(), list_.indices.begin() + list_.offsets[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t o = order[i];
+    for (int k = 0; k < D; ++k) swap_points_[D * i + k] = points_[D * o + k];
+    std::size_t w = swap_offsets_[i];
+    for (std::size_t r = list_.begin(o); r < list_.end(o); ++r) swap_u32_[w++] = inverse_[list_.indices[r]];
+  }
+  std::copy(swap_points_.begin(), swap_points_.end(), points_.begin());
+  std::copy(swap_offsets_.begin(), swap_offsets_.end(), list_.offsets.begin());
+  std::copy(swap_u32_.begin(), swap_u32_.end(), list_.indices.begin());
+  // cells: the particles of a cell, renamed (and sorted again, as bin() leaves them)
+  for (auto& c : cell_particles_) c = inverse_[c];
+  for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c)
+    std::sort(cell_particles_.begin() + cell_start_[c], cell_particles_.begin() + cell_start_[c + 1]);
+  for (std::size_t i = 0; i < n; ++i) swap_u32_[i] = cell_of_[order[i]];
+  std::copy(swap_u32_.begin(), swap_u32_.begin() + n, cell_of_.begin());
 }
 
 template <int D>
 void NeighbourSearch<D>::query(const Vec<D>& p, Real radius, std::vector<std::uint32_t>& out) const {
   out.clear();
-  if (!tree_) throw std::logic_error("NeighbourSearch::query before build");
-  tree_->cloud.pts = &points_;
-  std::vector<std::pair<std::uint32_t, Real>> hits;
-  const Vec<D> q = box_ ? box_->wrap(p) : p;
+  if (list_.offsets.empty()) throw std::logic_error("NeighbourSearch::query before build");
   if (box_ && radius > radius_)
     throw std::invalid_argument("NeighbourSearch::query: periodic query radius exceeds the build radius");
-  tree_->within(q.data(), radius, hits);
-  for (const auto& h : hits) out.push_back(image_owner_[h.first]);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  for (std::size_t j = 0; j < n_; ++j) {  // O(n): a query is not a hot path
+    Vec<D> d = p - Eigen::Map<const Vec<D>>(points_.data() + D * j);
+    if (box_) d = box_->minimum_image(d);
+    if (d.squaredNorm() < radius * radius) out.push_back(static_cast<std::uint32_t>(j));
+  }
 }
 
 template <int D>

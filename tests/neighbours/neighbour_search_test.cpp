@@ -1,6 +1,8 @@
 // Neighbour lists against brute force (open and periodic boxes, 1-3D), and Verlet-skin reuse.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <random>
 
 #include "sphark/neighbours/neighbour_search.hpp"
@@ -125,4 +127,76 @@ TEST(NeighbourSearch, RebuildAndMoveKeepResultsExact) {
   std::vector<std::uint32_t> got;
   moved.query(Vec<2>(0.5, 0.5), 0.05, got);
   for (auto j : got) EXPECT_LT((Eigen::Map<const Vec<2>>(x.data() + 2 * j) - Vec<2>(0.5, 0.5)).norm(), 0.05);
+}
+
+TEST(NeighbourSearch, ListsIndependentOfThreadCount) {
+  const auto x = random_points<3>(2000, 11);
+  PeriodicBox<3> b;
+  b.periodic = {true, true, false};
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  NeighbourSearch<3> one(b);
+  one.build(x.data(), 2000, 0.12);
+  omp_set_num_threads(2);
+  NeighbourSearch<3> two(b);
+  two.build(x.data(), 2000, 0.12);
+  omp_set_num_threads(saved);
+  EXPECT_EQ(one.list().offsets, two.list().offsets);
+  EXPECT_EQ(one.list().indices, two.list().indices);
+  expect_matches_brute_force(two, x, 0.12);
+}
+
+TEST(NeighbourSearch, RebuildWithoutMorePairsAllocatesNothing) {
+  auto x = random_points<2>(1000, 13);
+  PeriodicBox<2> b;
+  b.periodic = {true, true};
+  NeighbourSearch<2> ns(b);
+  ns.build(x.data(), 1000, 0.06);
+  EXPECT_EQ(ns.allocations(), 1);
+  const std::size_t pairs = ns.list().pairs();
+  for (int k = 1; k <= 4; ++k) {
+    for (std::size_t i = 0; i < x.size(); i += 2) x[i] += 0.1;  // a periodic translation: the same pairs
+    ns.build(x.data(), 1000, 0.06);
+    EXPECT_EQ(ns.list().pairs(), pairs);
+  }
+  EXPECT_EQ(ns.allocations(), 1);
+  expect_matches_brute_force(ns, x, 0.06);
+}
+
+TEST(NeighbourSearch, PerParticleRadiiListPairsWithinTheLargerRadius) {
+  const auto x = random_points<2>(800, 17);
+  PeriodicBox<2> b;
+  b.periodic = {true, true};
+  std::vector<Real> radii(800);
+  for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = 0.03 + 0.05 * std::abs(std::sin(1.7 * i));
+  NeighbourSearch<2> ns(b);
+  ns.build(x.data(), 800, 0.08, nullptr, radii.data());
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < 800; ++i) {
+    std::vector<std::uint32_t> expect;
+    for (std::size_t j = 0; j < 800; ++j)
+      if (j != i && ns.separation(x.data(), i, j).norm() < std::max(radii[i], radii[j]))
+        expect.push_back(static_cast<std::uint32_t>(j));
+    const auto& L = ns.list();
+    ASSERT_EQ(std::vector<std::uint32_t>(L.indices.begin() + L.begin(i), L.indices.begin() + L.end(i)), expect) << i;
+    total += expect.size();
+  }
+  EXPECT_GT(total, 800u);
+}
+
+TEST(NeighbourSearch, RenumberKeepsTheListsOfTheRenamedParticles) {
+  const auto x = random_points<2>(500, 19);
+  NeighbourSearch<2> ns;
+  ns.build(x.data(), 500, 0.1);
+  const NeighbourList before = ns.list();
+  const std::vector<std::uint32_t> order = ns.cell_order();  // new i = old order[i]
+  ns.renumber(order);
+  std::vector<std::uint32_t> inverse(500);
+  for (std::uint32_t i = 0; i < 500; ++i) inverse[order[i]] = i;
+  for (std::size_t i = 0; i < 500; ++i) {
+    std::vector<std::uint32_t> expect;
+    for (std::size_t k = before.begin(order[i]); k < before.end(order[i]); ++k) expect.push_back(inverse[before.indices[k]]);
+    const auto& L = ns.list();
+    ASSERT_EQ(std::vector<std::uint32_t>(L.indices.begin() + L.begin(i), L.indices.begin() + L.end(i)), expect) << i;
+  }
 }

@@ -1,14 +1,18 @@
 #pragma once
-// Fixed-radius neighbour search over a nanoflann kd-tree, with periodic images and compact
-// (CSR) lists. nanoflann works with SQUARED radii and distances: that is handled here only.
+// Fixed-radius neighbour search on a uniform cell grid (cell side >= radius; a particle's
+// neighbours lie in its own and the 3^D surrounding cells, wrapped across periodic faces), with
+// compact (CSR) lists. Periodic pairs are found by the minimum-image separation (the box must
+// be at least 2 radii long along periodic axes, so that image is unique).
 //
 // Reuse with a Verlet skin: build(x, n, radius + skin) once, then while
 // max_displacement_since_build(x) < skin / 2 every pair closer than `radius` is still in the
 // lists (each particle moved less than skin/2, so a pair closed in by less than skin).
-// A rebuild reuses every buffer's capacity; only nanoflann's node pool is allocated again.
+// A rebuild reuses every buffer's capacity: once the buffers have grown to the largest lists
+// seen, a rebuild allocates nothing (allocations() counts the builds that had to grow one).
+// The build is OpenMP-parallel over particles; the lists do not depend on the thread count.
 #include <cstddef>
 #include <cstdint>
-#include <memory>
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -40,7 +44,19 @@ class NeighbourSearch {
   // Lists every j != i with |x_i - x_j| < radius. x holds D values per particle (column-major
   // D x n, as vector_field<D> gives). Throws std::invalid_argument if a periodic box is shorter
   // than 2 * radius along a periodic axis (the minimum image would be ambiguous).
-  void build(const Real* x, std::size_t n, Real radius);
+  // key (optional, n entries): each row is sorted ascending by key[j] instead of j (a caller
+  // that stores particles in its own order keeps a fixed summation order this way).
+  // radii (optional, n entries, each <= radius): lists every pair with
+  // |x_i - x_j| < max(radii[i], radii[j]) instead (symmetric; radius sizes the cells).
+  void build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key = nullptr,
+             const Real* radii = nullptr);
+
+  // Renumbers the built particles: new index i is old index order[i] (a permutation of 0..n-1).
+  // The lists, the stored positions and the cells follow; every row keeps its order.
+  void renumber(const std::vector<std::uint32_t>& order);
+
+  // The built particles in cell order (a spatial order: neighbours in space are near in it).
+  const std::vector<std::uint32_t>& cell_order() const { return cell_particles_; }
 
   // Indices of the built particles within `radius` of point p (radius <= the build radius is
   // not required; images are searched when the box is periodic). Sorted ascending, unique.
@@ -59,16 +75,28 @@ class NeighbourSearch {
   // Largest |x_i - x_i(at build)| (minimum image), for the Verlet-skin validity check.
   Real max_displacement_since_build(const Real* x) const;
 
+  // Builds so far that had to enlarge a buffer (the others allocated nothing).
+  long allocations() const { return allocations_; }
+
  private:
-  struct Tree;
+  void bin(std::size_t n, Real radius);  // the cell grid of points_
+
   std::optional<PeriodicBox<D>> box_;
   Real radius_ = 0;
   NeighbourList list_;
-  std::vector<Real> points_;                // built points followed by periodic images (D each)
-  std::vector<std::uint32_t> image_owner_;  // original index of each stored point
+  std::vector<Real> points_;  // the built points (D each), wrapped into the box along periodic axes
   std::size_t n_ = 0;
-  std::unique_ptr<Tree> tree_;
-  std::vector<std::vector<std::uint32_t>> scratch_;  // per-particle lists, capacity kept across builds
+  // Cell grid: cells_[k] per axis, side side_[k] from origin_; particles of cell c are
+  // cell_particles_[cell_start_[c] .. cell_start_[c+1]), ascending.
+  std::array<std::size_t, D> cells_{};
+  Vec<D> origin_ = Vec<D>::Zero(), side_ = Vec<D>::Ones();
+  std::vector<std::uint32_t> cell_of_, cell_start_, cell_particles_;
+  std::vector<std::vector<std::uint32_t>> thread_lists_;  // per-thread rows, capacity kept
+  std::vector<std::uint32_t> inverse_, swap_u32_;         // renumber() scratch
+  std::vector<std::size_t> swap_offsets_;
+  std::vector<Real> swap_points_;
+  std::vector<Real> radius2_;  // per-particle squared radii of the last build (if given)
+  long allocations_ = 0;
 };
 
 }  // namespace sphark

@@ -2,6 +2,7 @@
 // An axis-aligned box, periodic along the flagged axes (minimum-image convention).
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "sphark/core/types.hpp"
 
@@ -48,6 +49,32 @@ struct PeriodicBox {
     for (bool p : periodic)
       if (p) return true;
     return false;
+  }
+};
+
+// The minimum-image separation for hot pair loops: L and 1/L held by value (1/L = 0 on open
+// axes, where nothing is subtracted). Equal to PeriodicBox::minimum_image except when d / L
+// rounds differently from d * (1/L), i.e. for a pair exactly half a box apart.
+template <int D>
+struct MinimumImage {
+  Vec<D> L = Vec<D>::Zero(), inv_L = Vec<D>::Zero();
+  MinimumImage() = default;
+  explicit MinimumImage(const std::optional<PeriodicBox<D>>& box) {
+    if (!box) return;
+    for (int k = 0; k < D; ++k)
+      if (box->periodic[k]) {
+        L[k] = box->hi[k] - box->lo[k];
+        inv_L[k] = 1.0 / L[k];
+      }
+  }
+  // x_a - x_b reduced to the nearest periodic image.
+  Vec<D> operator()(const Real* xa, const Real* xb) const {
+    Vec<D> d;
+    for (int k = 0; k < D; ++k) {
+      d[k] = xa[k] - xb[k];
+      d[k] -= L[k] * round_to_nearest(d[k] * inv_L[k]);
+    }
+    return d;
   }
 };
 

@@ -2,35 +2,70 @@
 // (seed 000, eqs. (4)-(5); Omega as in sphark/operators/density_summation.hpp).
 //
 // Speed: each particle's Newton iteration needs the sums at several trial h. The candidate
-// neighbours (r^2, r, m_b) are gathered ONCE per particle into a per-thread buffer, and every
-// Newton step sums over that buffer (same neighbours, same order, same kernel calls as
-// density_sum(): the result is bit-identical to iterating over the lists).
+// neighbours (r, m_b) are gathered ONCE per particle into a per-thread buffer, and every Newton
+// step sums over that buffer with the unit-h kernel shape (one 1/h per step, no filter: the
+// shape vanishes beyond the support). Against sphark::solve_density: round-off differences.
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+#include "sphark/schemes/spmhd/unit_kernel.hpp"
 
 namespace sphark {
 
 template <int D, class K>
-void SpmhdScheme<D, K>::build_neighbours(const Real* x, Real radius) {
-  ns_.build(x, n_, radius);
+void SpmhdScheme<D, K>::build_neighbours(const Real* x) {
+  Real r_max = 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    list_h_[i] = std::max(h_[i], want_[i]);
+    want_[i] = 0;
+    radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
+    r_max = std::max(r_max, radii_[i]);
+  }
+  ns_.build(x, n_, r_max, perm_.data(), radii_.data());  // rows sorted by particle index
   built_ = true;
   ++builds_;
   const NeighbourList& L = ns_.list();
   std::size_t longest = 0;
   for (std::size_t i = 0; i < n_; ++i) longest = std::max(longest, L.count(i));
   max_list_ = longest;
+  sort_slots_by_cell();
 }
 
-// Verlet lists built with radius R = support * h_est * (1 + skin). A pair closer than
-// support * h now was closer than support * h + 2 * disp at the build, so the lists serve every
-// h <= (R - 2 disp) / support. The density solve reports particles that need more; then rebuild.
+// Renumbers the slots in the cell order of the fresh lists; the per-slot data that outlives this
+// RHS (positions, h and its guesses, masses, the slot -> particle map) follows.
+template <int D, class K>
+void SpmhdScheme<D, K>::sort_slots_by_cell() {
+  order_ = ns_.cell_order();
+  ns_.renumber(order_);
+  auto permute = [&](auto& v, int comps) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    if (v.size() != comps * n_) return;
+    permute_scratch_.resize(v.size());
+    for (std::size_t i = 0; i < n_; ++i)
+      for (int k = 0; k < comps; ++k) permute_scratch_[comps * i + k] = static_cast<Real>(v[comps * order_[i] + k]);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<T>(permute_scratch_[i]);
+  };
+  permute(x_, D);
+  permute(h_, 1);
+  permute(h_guess_, 1);
+  permute(ms_, 1);
+  permute(list_h_, 1);
+  permute(radii_, 1);
+  permute(perm_, 1);  // slot indices < 2^31: exact through a double
+}
+
+// Verlet lists with per-particle radii R_i = support * list_h_i * (1 + skin). A pair closer than
+// support * h_i now was closer than support * h_i + 2 disp at the build, so particle i's list
+// serves every h_i <= cap_i = (R_i - 2 disp) / support; a pair of the force loop (closer than
+// support * max(h_a, h_b)) is listed when both h are within their caps. Rebuild when some h
+// (the guess: the previous h) exceeds its cap, or when the density solve reports an h beyond.
 template <int D, class K>
 void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
   if (h_[0] <= 0) {
@@ -42,80 +77,96 @@ void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
     const Real volume = (hi - lo).prod();
     std::fill(h_.begin(), h_.end(), opt_.eta * std::pow(volume / static_cast<Real>(n_), 1.0 / D));
   }
-  Real h_est = *std::max_element(h_.begin(), h_.end());
+  h_guess_.assign(h_.begin(), h_.end());  // every attempt starts from the same guesses
   for (int attempt = 0; attempt < 8; ++attempt) {
-    Real cap = 0;
+    if (attempt > 0) std::copy(h_guess_.begin(), h_guess_.end(), h_.begin());
     {
       ScopedPhase timer(Phase::Neighbours);
-      if (built_) {
+      bool rebuild = !built_ || attempt > 0;
+      if (!rebuild) {
         const Real disp = opt_.evolve_particles ? ns_.max_displacement_since_build(x) : 0;
-        cap = (ns_.radius() - 2 * disp) / K::support;
+        std::size_t short_lists = 0;
+#pragma omp parallel for schedule(static) reduction(+ : short_lists)
+        for (std::size_t i = 0; i < n_; ++i) {
+          cap_[i] = (radii_[i] - 2 * disp) / K::support;
+          short_lists += h_[i] > cap_[i];
+        }
+        rebuild = short_lists > 0;
       }
-      if (!built_ || cap < h_est) {
-        build_neighbours(x, K::support * h_est * (1 + opt_.skin));
-        cap = ns_.radius() / K::support;
+      if (rebuild) {
+        build_neighbours(x);
+        for (std::size_t i = 0; i < n_; ++i) cap_[i] = radii_[i] / K::support;
       }
     }
     ScopedPhase timer(Phase::DensityH);
-    const DensityStats st = solve_density(x, cap);
+    const DensityStats st = solve_density(x);
     if (st.outside_list == 0) {
       if (st.not_converged > 0) throw std::runtime_error("density: h iteration did not converge");
       return;
     }
-    h_est = std::max(st.h_max, cap) * 1.5;
   }
   throw std::runtime_error("density: smoothing lengths keep growing beyond the neighbour lists");
 }
 
 // Solves (4)-(5) for every particle (Newton-Raphson with a bisection fallback, as
-// sphark::solve_density); h_ holds the initial guess (the previous h). h_list: the largest h
-// the lists can serve.
+// sphark::solve_density); h_ holds the initial guess (the previous h), cap_ the largest h the
+// lists can serve.
 template <int D, class K>
-typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x, Real h_list) {
+typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x) {
   const int threads = omp_get_max_threads();
-  const std::size_t stride = 3 * max_list_;
+  const std::size_t stride = 2 * max_list_;
   if (cand_.size() < stride * static_cast<std::size_t>(threads)) cand_.resize(stride * threads);
   const NeighbourList& L = ns_.list();
-  const Real* m = m_.data();
-  const Real r_list2 = (K::support * h_list) * (K::support * h_list);
+  const Real* m = ms_.data();
+  const MinimumImage<D> image(ns_.box());
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
-  std::size_t not_converged = 0, outside = 0;
+  const Real w0 = K::w(0, 1.0);  // sigma f(0)
+  std::size_t not_converged = 0, outside = 0, iterations = 0;
   Real h_max = 0;
-#pragma omp parallel reduction(+ : not_converged, outside) reduction(max : h_max)
+#pragma omp parallel reduction(+ : not_converged, outside, iterations) reduction(max : h_max)
   {
-    Real* r2c = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
-    Real* rc = r2c + max_list_;
+    Real* rc = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
     Real* mc = rc + max_list_;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n_; ++i) {
+      const Real h_list = cap_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
       // Candidates: every listed neighbour that any trial h <= h_list can reach, in list order.
       std::size_t nc = 0;
       for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
         const std::size_t j = L.indices[k];
-        const Real r2 = ns_.separation(x, i, j).squaredNorm();
+        const Real r2 = image(x + D * i, x + D * j).squaredNorm();
         if (r2 >= r_list2) continue;
-        r2c[nc] = r2;
         rc[nc] = std::sqrt(r2);
         mc[nc] = m[j];
         ++nc;
       }
-      // rho(h) and drho/dh at smoothing length hh, self term first (seed 000, eq. (4)).
+      // rho(h) and drho/dh at smoothing length hh, self term first (seed 000, eq. (4)), from the
+      // unit-h shape: W = w1(q) / h^D and dW/dh = -(D W + r dW/dr) / h = -(D w1 + q^2 f1) / h^(D+1),
+      // with w1 = K::w(q, 1), f1 = K::f_over_r(q, 1), q = r / h (unit_kernel.hpp). Beyond the
+      // support w1 = f1 = 0.
       auto density_at = [&](Real hh, Real& rho, Real& drho_dh) {
-        rho = m[i] * K::w(0, hh);
-        drho_dh = m[i] * kernel_dw_dh<D, K>(0, hh);
-        const Real r_max2 = (K::support * hh) * (K::support * hh);
+        const Real hinv = 1.0 / hh;
+        Real s0 = m[i] * w0, s1 = D * m[i] * w0;
         for (std::size_t c = 0; c < nc; ++c) {
-          if (r2c[c] >= r_max2) continue;
-          rho += mc[c] * K::w(rc[c], hh);
-          drho_dh += mc[c] * kernel_dw_dh<D, K>(rc[c], hh);
+          Real w1, q2f1;
+          UnitKernel<K>::w_and_q2f(rc[c] * hinv, w1, q2f1);
+          s0 += mc[c] * w1;
+          s1 += mc[c] * (D * w1 + q2f1);
         }
+        Real hd = 1;
+        for (int k = 0; k < D; ++k) hd *= hinv;
+        rho = s0 * hd;
+        drho_dh = -s1 * hd * hinv;
       };
       const Real m_eta = m[i] * eta_d;
       Real hh = std::min(h_[i], h_list);
       Real lo = 0, hi = h_list;  // bracket: f < 0 below the root, f > 0 above (f increasing)
       bool converged = false;
       Real r = 0, dr = 0;
+      // Newton-Raphson with a bisection fallback, to |h_new - h| < tol * h; rho and Omega are
+      // then evaluated at the returned h_new (quadratic convergence: (5) holds to round-off).
       for (int it = 0; it < 100 && !converged; ++it) {
+        ++iterations;
         density_at(hh, r, dr);
         const Real rho_h = m_eta / std::pow(hh, D);  // seed 000, eq. (5): rho(h) = m (eta / h)^D
         const Real f = r - rho_h, df = dr + D * rho_h / hh;
@@ -126,21 +177,32 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         hh = h_new;
       }
       if (!converged) ++not_converged;
-      if (hh >= h_list * (1 - 1e-12)) ++outside;
       density_at(hh, r, dr);
       h_[i] = hh;
       rho_[i] = r;
       omega_[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)
       h_max = std::max(h_max, hh);
+      // Root beyond what the lists serve? The iteration cannot leave [0, h_list]: near h_list it
+      // converges onto h_list itself (to the tolerance) when the root lies beyond. f increases
+      // with h, so the root is beyond h_list exactly when f(h_list) < 0.
+      if (hh > h_list * (1 - 1e-6)) {
+        density_at(h_list, r, dr);
+        if (r < m_eta / std::pow(h_list, D)) {
+          ++outside;
+          want_[i] = 1.5 * h_list;
+        }
+      }
     }
   }
-  return {not_converged, outside, h_max};
+  h_iterations_ += static_cast<double>(iterations);
+  return {not_converged, outside, iterations, h_max};
 }
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
-  template void SpmhdScheme<D, K>::build_neighbours(const Real*, Real);                         \
+  template void SpmhdScheme<D, K>::build_neighbours(const Real*);                               \
+  template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real*);                  \
-  template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*, Real);
+  template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*);
 SPHARK_SPMHD_DENSITY(2, CubicSpline<2>)
 SPHARK_SPMHD_DENSITY(3, CubicSpline<3>)
 #undef SPHARK_SPMHD_DENSITY

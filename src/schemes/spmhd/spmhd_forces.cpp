@@ -10,36 +10,13 @@
 
 #include "sphark/core/profile.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+#include "sphark/schemes/spmhd/unit_kernel.hpp"
 
 namespace sphark {
 
-namespace {
-// x_a - x_b reduced to the nearest periodic image, with 1/L precomputed (1/L = 0 on open axes).
-template <int D>
-struct MinimumImage {
-  Vec<D> L = Vec<D>::Zero(), inv_L = Vec<D>::Zero();
-  explicit MinimumImage(const std::optional<PeriodicBox<D>>& box) {
-    if (!box) return;
-    for (int k = 0; k < D; ++k)
-      if (box->periodic[k]) {
-        L[k] = box->hi[k] - box->lo[k];
-        inv_L[k] = 1.0 / L[k];
-      }
-  }
-  Vec<D> operator()(const Real* xa, const Real* xb) const {
-    Vec<D> d;
-    for (int k = 0; k < D; ++k) {
-      d[k] = xa[k] - xb[k];
-      d[k] -= L[k] * round_to_nearest(d[k] * inv_L[k]);
-    }
-    return d;
-  }
-};
-}  // namespace
-
 template <int D, class K>
-void SpmhdScheme<D, K>::pair_loop_arrays(const Real* y) {
-  const Real* psi = opt_.cleaning != Cleaning::None ? y + layout_.offset(Field::Psi) : nullptr;
+void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
+  const Real* psi = opt_.cleaning != Cleaning::None ? psi_.data() : nullptr;
 #pragma omp parallel for schedule(static)
   for (std::size_t a = 0; a < n_; ++a) {
     const Real hi = 1.0 / h_[a];
@@ -68,9 +45,11 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   const bool induction = opt_.field == FieldRepresentation::MagneticField;
   const Cleaning cleaning = opt_.cleaning;
   const Real* x = x_.data();
-  const Real* v = evolve ? y + layout_.offset(Field::Velocity) : nullptr;
-  const Real* u = evolve ? y + layout_.offset(Field::InternalEnergy) : nullptr;
-  const Real* psi = cleaning != Cleaning::None ? y + layout_.offset(Field::Psi) : nullptr;
+  // inputs in slot order (gathered by prepare()); outputs go to particle perm_[a]
+  const Real* v = evolve ? v_.data() : nullptr;
+  const Real* u = evolve ? u_.data() : nullptr;
+  const Real* psi = cleaning != Cleaning::None ? psi_.data() : nullptr;
+  const std::uint32_t* perm = perm_.data();
   Real* dx_dt = evolve ? ydot + layout_.offset(Field::Position) : nullptr;
   Real* dv_dt = evolve ? ydot + layout_.offset(Field::Velocity) : nullptr;
   Real* du_dt = evolve ? ydot + layout_.offset(Field::InternalEnergy) : nullptr;
@@ -82,7 +61,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   const MinimumImage<D> image(ns_.box());
   const Real alpha_visc = opt_.alpha_visc, beta_visc = opt_.beta_visc, alpha_u = opt_.alpha_u;
   const Real alpha_b = induction ? opt_.alpha_b : 0.0;
-  const Real *m = m_.data(), *h = h_.data(), *hinv = hinv_.data(), *fscale = fscale_.data(), *rho = rho_.data();
+  const Real *m = ms_.data(), *h = h_.data(), *hinv = hinv_.data(), *fscale = fscale_.data(), *rho = rho_.data();
   const Real *o = o_.data(), *oM = oM_.data(), *oB = oB_.data(), *opsi = opsi_.data(), *Bs = B_.data();
   const Real *cf = cf_.data(), *P = P_.data();
   auto mag = [&](std::size_t i) { return Eigen::Map<const Vec3>(Bs + 3 * i); };
@@ -105,8 +84,9 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
       const Real reach = K::support * std::max(ha, hb);
       if (r2 >= reach * reach || r2 == 0) continue;
       ++pairs;
-      const Real r = std::sqrt(r2);
-      const Real Fa = fsa * K::f_over_r(r * hia, 1.0), Fb = fscale[b] * K::f_over_r(r * hinv[b], 1.0);
+      const Real r = std::sqrt(r2), rinv = 1.0 / r;
+      const Real Fa = fsa * UnitKernel<K>::f_over_r(r * hia, ha * rinv);
+      const Real Fb = fscale[b] * UnitKernel<K>::f_over_r(r * hinv[b], hb * rinv);
       const Vec<D> ga = Fa * dx, gb = Fb * dx;  // grad_a W_ab(h_a), grad_a W_ab(h_b)
       const Real mb = m[b];
       const Vec3 Bb = mag(b), Bab = Ba - Bb;
@@ -133,7 +113,6 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
       }
 
       // Dissipation with the mean kernel gradient gbar = (g_a + g_b)/2 (antisymmetric in a, b).
-      const Real rinv = 1.0 / r;
       const Vec<D> rhat = rinv * dx;
       const Real rhat_g = 0.5 * (Fa + Fb) * r;  // rhat . gbar < 0
       const Real rho_ab = 0.5 * (rhoa + rho[b]), rho_ab_inv = 1.0 / rho_ab;
@@ -173,19 +152,19 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
       Real dpsi = -(opt_.local_ch ? chs_[a] : ch2) * divB;
       if (opt_.sigma > 0) dpsi -= opt_.sigma * chs_[a] / ha * psi[a];       // -psi / tau
       if (evolve && cleaning == Cleaning::Constrained) dpsi += 0.5 * psi[a] * inv_orho * divv;  // eq. (25)
-      dpsi_dt[a] = dpsi;
+      dpsi_dt[perm[a]] = dpsi;
     }
     if (evolve) {
       divv *= -inv_orho;
       divv_[a] = divv;
       if (opt_.subtract_monopole_force) acc -= Ba.template head<D>() * monopole;  // eq. (9)
-      Eigen::Map<Vec<D>>(dx_dt + D * a) = va;
-      Eigen::Map<Vec<D>>(dv_dt + D * a) = acc;
-      du_dt[a] = P[a] * oa * dudt_p + dudt_diss;
+      Eigen::Map<Vec<D>>(dx_dt + D * perm[a]) = va;
+      Eigen::Map<Vec<D>>(dv_dt + D * perm[a]) = acc;
+      du_dt[perm[a]] = P[a] * oa * dudt_p + dudt_diss;
       if (induction) dB += -inv_orho * dB_ind + rhoa * dB_res;
-      else dalpha_dt[a] = 0;  // alpha advected with the flow: d alpha / dt = 0
+      else dalpha_dt[perm[a]] = 0;  // alpha advected with the flow: d alpha / dt = 0
     }
-    if (induction) Eigen::Map<Vec3>(dB_dt + 3 * a) = dB;
+    if (induction) Eigen::Map<Vec3>(dB_dt + 3 * perm[a]) = dB;
   }
   interacting_pairs_ = pairs;
   pairs_total_ += static_cast<double>(pairs);

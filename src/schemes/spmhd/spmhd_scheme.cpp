@@ -74,6 +74,31 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   oM_.assign(D * D * n_, 0);
   oB_.assign(3 * n_, 0);
   opsi_.assign(n_, 0);
+  list_h_.assign(n_, 0);
+  cap_.assign(n_, 0);
+  want_.assign(n_, 0);
+  radii_.assign(n_, 0);
+  perm_.resize(n_);
+  for (std::size_t i = 0; i < n_; ++i) perm_[i] = static_cast<std::uint32_t>(i);
+  ms_ = m_;
+  xg_.assign(x_.size(), 0);
+  if (opt_.evolve_particles) {
+    v_.assign(D * n_, 0);
+    u_.assign(n_, 0);
+  }
+  if (opt_.cleaning != Cleaning::None) psi_.assign(n_, 0);
+  if (opt_.field == FieldRepresentation::EulerPotentials) alpha_.assign(n_, 0);
+}
+
+template <int D, class K>
+const std::vector<Real>& SpmhdScheme<D, K>::in_particle_order(const std::vector<Real>& slots, int comps,
+                                                               ParticleOrderCache& c) const {
+  if (c.version == version_ && c.data.size() == slots.size()) return c.data;
+  c.data.resize(slots.size());
+  for (std::size_t s = 0; s < n_; ++s)
+    for (int k = 0; k < comps; ++k) c.data[comps * perm_[s] + k] = slots[comps * s + k];
+  c.version = version_;
+  return c.data;
 }
 
 template <int D, class K>
@@ -100,7 +125,7 @@ void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) 
       const Vec<D> dx = ns_.separation(x, a, b);
       const Real r2 = dx.squaredNorm();
       if (r2 >= r2max) continue;
-      grad += m_[b] * (alpha[a] - alpha[b]) * K::f_over_r(std::sqrt(r2), ha) * dx;
+      grad += ms_[b] * (alpha[a] - alpha[b]) * K::f_over_r(std::sqrt(r2), ha) * dx;
     }
     grad *= -1.0 / (omega_[a] * rho_[a]);
     B_[3 * a + 0] = grad[1];
@@ -111,26 +136,40 @@ void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) 
 
 template <int D, class K>
 int SpmhdScheme<D, K>::prepare(const Real* y) {
+  ++version_;
   const Real* x = x_.data();
+  const std::uint32_t* p = perm_.data();
+  // gathers state entries (comps per particle) into slot order
+  auto gather = [&](Field f, int comps, std::vector<Real>& out) {
+    const Real* in = y + layout_.offset(f);
+#pragma omp parallel for schedule(static)
+    for (std::size_t s = 0; s < n_; ++s)
+      for (int k = 0; k < comps; ++k) out[comps * s + k] = in[comps * p[s] + k];
+  };
   if (opt_.evolve_particles) {
     // Density, h and Omega depend on the positions only: skip the solve when they are unchanged
     // (bit for bit) since the last call, e.g. max_stable_dt or stiff_diagonal after rhs.
-    const Real* xs = y + layout_.offset(Field::Position);
-    if (!built_ || !std::equal(xs, xs + D * n_, x_.begin())) {
-      std::copy(xs, xs + D * n_, x_.begin());
+    gather(Field::Position, D, xg_);
+    if (!built_ || xg_ != x_) {
+      std::copy(xg_.begin(), xg_.end(), x_.begin());
       ensure_neighbours_and_density(x);
+      p = perm_.data();  // a rebuild renumbers the slots
     }
+    gather(Field::Velocity, D, v_);
+    gather(Field::InternalEnergy, 1, u_);
   } else if (!built_) {
     ensure_neighbours_and_density(x);
+    p = perm_.data();
   }
+  if (!psi_.empty()) gather(Field::Psi, 1, psi_);
   if (opt_.field == FieldRepresentation::MagneticField) {
-    const Real* B = y + layout_.offset(Field::MagneticField);
-    std::copy(B, B + 3 * n_, B_.begin());
+    gather(Field::MagneticField, 3, B_);
   } else {
     ScopedPhase timer(Phase::Forces);
-    euler_potential_field(x, y + layout_.offset(Field::EulerAlpha));
+    gather(Field::EulerAlpha, 1, alpha_);
+    euler_potential_field(x, alpha_.data());
   }
-  const Real* u = opt_.evolve_particles ? y + layout_.offset(Field::InternalEnergy) : nullptr;
+  const Real* u = opt_.evolve_particles ? u_.data() : nullptr;
   Real cmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : cmax)
   for (std::size_t a = 0; a < n_; ++a) {
@@ -184,7 +223,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexce
   std::fill(c, c + layout_.size(), 0.0);
   if (!has_stiff_diagonal()) return 0;
   Real* cpsi = c + layout_.offset(Field::Psi);
-  for (std::size_t a = 0; a < n_; ++a) cpsi[a] = opt_.sigma * chs_[a] / h_[a];  // 1/tau_a
+  for (std::size_t a = 0; a < n_; ++a) cpsi[perm_[a]] = opt_.sigma * chs_[a] / h_[a];  // 1/tau_a
   return 0;
 }
 
@@ -199,7 +238,7 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t a = 0; a < n_; ++a) {
     Real vsig = std::max(chs_[a], cf_[a]);
-    if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * a).norm();
+    if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
   }
   return dt;

@@ -4,6 +4,7 @@
 #include <exception>
 #include <sstream>
 
+#include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernels.hpp"
 #include "sphark/operators/artificial_viscosity.hpp"
 #include "sphark/operators/conjugate_cleaning.hpp"
@@ -41,6 +42,7 @@ template <int D, class Kernel>
 void WcsphSystem<D, Kernel>::update_neighbours(const Real* x) {
   const Real support = Kernel::support * p_.h;
   const Real skin = p_.skin_fraction * support;
+  ScopedPhase timer(Phase::Neighbours);
   if (built_ && search_.max_displacement_since_build(x) < 0.5 * skin) return;
   search_.build(x, layout_.particles(), support + skin);
   built_ = true;
@@ -53,6 +55,7 @@ void WcsphSystem<D, Kernel>::renormalised_density_gradients(const Real* x, const
   const NeighbourList& nl = search_.list();
   const Real h = p_.h, support2 = Kernel::support * h * Kernel::support * h;
   const std::size_t n = layout_.particles();
+  ScopedPhase timer(Phase::DensityH);
 #pragma omp parallel for schedule(static)
   for (std::size_t a = 0; a < n; ++a) {
     RenormalisedGradient<D> g;
@@ -84,6 +87,7 @@ int WcsphSystem<D, Kernel>::check_state(const Real* y) {
 
 template <int D, class Kernel>
 int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
+  ScopedPhase rhs_timer(Phase::Rhs);
   try {
     ++rhs_calls_;
     if (int bad = check_state(y)) return bad;
@@ -115,6 +119,7 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept 
     const NeighbourList& nl = search_.list();
     const Real support2 = Kernel::support * h * Kernel::support * h;
     Real max_acc2 = 0;
+    ScopedPhase forces_timer(Phase::Forces);
 #pragma omp parallel for schedule(static) reduction(max : max_acc2)
     for (std::size_t a = 0; a < n; ++a) {
       Vec<D> acc = Vec<D>::Zero();

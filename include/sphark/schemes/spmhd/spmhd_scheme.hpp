@@ -11,6 +11,13 @@
 // races, results independent of the thread count), and allocates nothing after the first call
 // except when the Verlet lists must be rebuilt. Per-particle quantities of the pair loops are
 // kept as structure-of-arrays, filled once per RHS (prepare()).
+//
+// Memory order: internally particles live in "slots" sorted by neighbour-grid cell, renewed at
+// every list rebuild, so that the pair loops read neighbours that are close in memory (a
+// scrambled order costs 2-6x). perm_[slot] is the particle (state index); inputs are gathered
+// from the state and derivatives scattered back. Neighbour rows are sorted by particle index,
+// so every sum runs in the same order whatever the slots: results do not depend on them.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,25 +57,30 @@ class SpmhdScheme final : public OdeSystem {
   long rhs_evaluations() const { return rhs_calls_; }
   // Number of neighbour-list builds so far (Verlet reuse: far fewer than RHS evaluations).
   long neighbour_builds() const { return builds_; }
+  // Makes the next RHS build its neighbour lists afresh (tests, benchmarks of the rebuild).
+  void drop_neighbour_lists() { built_ = false; }
   // The current neighbour lists (pairs within K::support * h (1 + skin) at the last build).
+  // Its particle numbers are the scheme's internal slots (see below), not state indices.
   const NeighbourSearch<D>& neighbours() const { return ns_; }
   // Pairs a-b (ordered, a != b) with |x_a - x_b| < K::support * max(h_a, h_b) at the last RHS:
   // the pair interactions the force loop evaluated.
   std::size_t interacting_pairs() const { return interacting_pairs_; }
+  // Newton (or bisection) steps of the h solve so far, summed over particles.
+  double h_iterations_total() const { return h_iterations_; }
   // Sum of interacting_pairs() over all RHS evaluations so far.
   double pair_interactions_total() const { return pairs_total_; }
 
-  // Per-particle quantities of the most recent rhs() (or evaluate()).
-  const std::vector<Real>& h() const { return h_; }
-  const std::vector<Real>& rho() const { return rho_; }
-  const std::vector<Real>& omega() const { return omega_; }
-  const std::vector<Real>& pressure() const { return P_; }
-  const std::vector<Real>& div_b() const { return divB_; }       // seed 000, eq. (20)
-  const std::vector<Real>& div_v() const { return divv_; }       // continuity form, eq. (25)
-  const std::vector<Real>& magnetic_field() const { return B_; }  // 3 x N (from state or potentials)
-  const std::vector<Real>& positions() const { return x_; }       // D x N (fixed, or last state)
-  Real cleaning_speed() const { return ch_; }                       // global c_h (the largest if local_ch)
-  const std::vector<Real>& cleaning_speeds() const { return chs_; }  // c_h,a per particle
+  // Per-particle quantities of the most recent rhs() (or evaluate()), in particle (state) order.
+  const std::vector<Real>& h() const { return in_particle_order(h_, 1, out_h_); }
+  const std::vector<Real>& rho() const { return in_particle_order(rho_, 1, out_rho_); }
+  const std::vector<Real>& omega() const { return in_particle_order(omega_, 1, out_omega_); }
+  const std::vector<Real>& pressure() const { return in_particle_order(P_, 1, out_P_); }
+  const std::vector<Real>& div_b() const { return in_particle_order(divB_, 1, out_divB_); }  // seed 000, eq. (20)
+  const std::vector<Real>& div_v() const { return in_particle_order(divv_, 1, out_divv_); }  // continuity form, eq. (25)
+  const std::vector<Real>& magnetic_field() const { return in_particle_order(B_, 3, out_B_); }  // 3 x N
+  const std::vector<Real>& positions() const { return in_particle_order(x_, D, out_x_); }  // D x N (fixed, or last state)
+  Real cleaning_speed() const { return ch_; }  // global c_h (the largest if local_ch)
+  const std::vector<Real>& cleaning_speeds() const { return in_particle_order(chs_, 1, out_chs_); }  // c_h,a
 
   // rhs() into an internal buffer, to refresh the per-particle quantities above.
   int evaluate(Real t, const Real* y) noexcept;
@@ -76,32 +88,51 @@ class SpmhdScheme final : public OdeSystem {
  private:
   int prepare(const Real* y);                      // neighbours, density, P, c, B, c_h
   void ensure_neighbours_and_density(const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
-  void build_neighbours(const Real* x, Real radius);
+  void build_neighbours(const Real* x);  // lists for list_h_, then slots in cell order
   struct DensityStats {
-    std::size_t not_converged = 0, outside_list = 0;
+    std::size_t not_converged = 0, outside_list = 0, iterations = 0;
     Real h_max = 0;
   };
-  DensityStats solve_density(const Real* x, Real h_list);
+  DensityStats solve_density(const Real* x);  // h_[i] <= cap_[i]; sets want_ where not enough
   void euler_potential_field(const Real* x, const Real* alpha);
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
 
+  // The per-slot array `slots` (comps per particle) in particle order, cached per RHS.
+  struct ParticleOrderCache {
+    std::vector<Real> data;
+    long version = -1;
+  };
+  const std::vector<Real>& in_particle_order(const std::vector<Real>& slots, int comps, ParticleOrderCache& c) const;
+  void sort_slots_by_cell();  // after a list build: renumber slots in cell order
+
   std::size_t n_;
-  std::vector<Real> m_;
+  std::vector<Real> m_;     // masses, particle order
+  std::vector<Real> ms_;    // masses, slot order
+  std::vector<std::uint32_t> perm_, order_;  // slot -> particle; scratch of sort_slots_by_cell
+  std::vector<Real> permute_scratch_;
+  std::vector<Real> xg_, v_, u_, psi_, alpha_;  // gathered inputs (slot order)
+  long version_ = 0;                           // bumped by every prepare()
+  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_, out_chs_;
   SpmhdOptions opt_;
   StateLayout layout_;
   NeighbourSearch<D> ns_;
   bool built_ = false;
-  std::vector<Real> x_;  // fixed positions, or a copy of the current ones
+  std::vector<Real> x_;  // fixed positions, or a copy of the current ones (slot order, as all below)
   std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, chs_, B_, divB_, divv_;
   std::vector<Real> scratch_;
   // Pair-loop arrays (SoA): 1/h, 1/h^(D+2) (kernel gradient scale), o = 1/(Omega rho^2),
   // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
   std::vector<Real> hinv_, fscale_, o_, oM_, oB_, opsi_;
+  std::vector<Real> h_guess_;       // h at the start of the density solve
+  // Per-particle Verlet lists: particle i's list radius is support * list_h_[i] * (1 + skin)
+  // (a pair is listed if closer than the larger of its two radii); cap_[i], the largest h the
+  // lists serve now; want_[i] > 0: the h the next build must serve (an h grew past cap_[i]).
+  std::vector<Real> list_h_, cap_, want_, radii_;
   std::vector<Real> cand_;          // per-thread candidate (r^2, r, m) of the density solve
   std::size_t max_list_ = 0;        // longest neighbour list of the current build
   std::size_t interacting_pairs_ = 0;
-  double pairs_total_ = 0;
+  double pairs_total_ = 0, h_iterations_ = 0;
   Real ch_ = 0;
   long rhs_calls_ = 0;
   long builds_ = 0;

@@ -1,0 +1,37 @@
+// Kernel evaluation: W and (dW/dr)/r of every kernel over q in [0, support) (2D and 3D), ns
+// per evaluation (one W plus one f_over_r).
+//   build/bin/bench_kernels
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "sphark/kernels/kernels.hpp"
+
+using namespace sphark;
+
+namespace {
+template <class K>
+void BM_Kernel(benchmark::State& state) {
+  const std::size_t n = 4096;
+  const Real h = 0.7;
+  std::vector<Real> r(n);
+  for (std::size_t i = 0; i < n; ++i) r[i] = K::support * h * (i + 0.5) / n;
+  for (auto _ : state) {
+    Real s = 0;
+    for (std::size_t i = 0; i < n; ++i) s += K::w(r[i], h) + K::f_over_r(r[i], h);
+    benchmark::DoNotOptimize(s);
+  }
+  state.counters["ns_per_eval"] = benchmark::Counter(static_cast<double>(n) * 1e-9,
+                                                     benchmark::Counter::kIsIterationInvariantRate |
+                                                         benchmark::Counter::kInvert);
+}
+}  // namespace
+
+BENCHMARK(BM_Kernel<CubicSpline<2>>);
+BENCHMARK(BM_Kernel<QuinticSpline<2>>);
+BENCHMARK(BM_Kernel<WendlandC2<2>>);
+BENCHMARK(BM_Kernel<WendlandC4<2>>);
+BENCHMARK(BM_Kernel<WendlandC6<2>>);
+BENCHMARK(BM_Kernel<CubicSpline<3>>);
+BENCHMARK(BM_Kernel<WendlandC2<3>>);
+BENCHMARK_MAIN();
