@@ -24,7 +24,7 @@ const std::vector<std::string> kVariants = {"none", "resistivity", "euler", "cle
 
 // Settings shared by every variant (the Courant number) and those of the variants that use them.
 struct Settings {
-  Real sigma = 0.3, alpha_b = 1.0, overclean = 4.0, courant = 0.3;  // overclean: see docs/spmhd.md
+  Real sigma = 0.3, alpha_b = 1.0, overclean = 8.0, courant = 0.3;  // overclean: see docs/spmhd.md
   bool local_ch = false;
 };
 
