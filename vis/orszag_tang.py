@@ -75,19 +75,26 @@ def fig2(directory, t_want, out):
     rows = [("density", "density", "viridis"), ("magnetic_pressure", "magnetic pressure", "inferno"),
             ("div_B", "∇·B", "RdBu_r")]
     fig, axes = plt.subplots(3, len(found), figsize=(3.2 * len(found), 9.6), squeeze=False)
+    frames = {}
+    for v, label in found:
+        t, path = frame_at(os.path.join(directory, v), t_want)
+        if path is not None and abs(t - t_want) <= 1e-6:  # else the run did not reach t_want
+            frames[v] = (t, read_vtp(path, [r[0] for r in rows]))
+    # One div B colour scale for every column (as in the seed's Fig. 2, where the cleaned field
+    # looks blank next to the others): the 99th percentile of |div B| over all panels.
+    all_div = sorted(abs(float(z)) for _, (_, _, arr) in frames.values() for z in arr["div_B"])
+    div_lim = all_div[int(0.99 * (len(all_div) - 1))] if all_div else 1.0
     t_seen = None
     for col, (v, label) in enumerate(found):
-        t, path = frame_at(os.path.join(directory, v), t_want)
-        if path is None or abs(t - t_want) > 1e-6:  # the run did not reach t_want
+        if v not in frames:
             continue
-        t_seen = t
-        x, y, arr = read_vtp(path, [r[0] for r in rows])
+        t_seen, (x, y, arr) = frames[v]
         tri = triangulation(x, y)
         for row, (name, title, cmap) in enumerate(rows):
             ax = axes[row][col]
             z = arr[name]
             if name == "div_B":
-                lim = float(abs(z).max()) or 1.0
+                lim = div_lim or 1.0
                 im = ax.tripcolor(tri, z, shading="gouraud", cmap=cmap, vmin=-lim, vmax=lim)
             else:
                 im = ax.tripcolor(tri, z, shading="gouraud", cmap=cmap)

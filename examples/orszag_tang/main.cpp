@@ -31,19 +31,25 @@ struct Settings {
   CoreOptions core;
   int nx = 128;
   Real sigma = 0.3, alpha_b = 1.0;
+  Real overclean = 8.0;  // cleaning variants: c_h = overclean x max fast speed (docs/spmhd.md)
+  Real courant = 0.3;    // every variant: dt = C h / max(v_sig, c_h)
+  bool local_ch = false;
   RunControlOptions run;
   std::vector<std::string> argv;
   const Checkpoint* restart = nullptr;
 };
 
-SpmhdOptions variant_options(const std::string& v, Real sigma, Real alpha_b) {
+SpmhdOptions variant_options(const std::string& v, const Settings& set) {
   SpmhdOptions o;
   o.gamma = 5.0 / 3.0;
-  if (v == "resistivity" || v == "cleaning+resistivity") o.alpha_b = alpha_b;
+  o.courant = set.courant;
+  if (v == "resistivity" || v == "cleaning+resistivity") o.alpha_b = set.alpha_b;
   if (v == "euler") o.field = FieldRepresentation::EulerPotentials;
   if (v == "cleaning" || v == "cleaning+resistivity") {
     o.cleaning = Cleaning::Constrained;
-    o.sigma = sigma;
+    o.sigma = set.sigma;
+    o.overclean = set.overclean;
+    o.local_ch = set.local_ch;
   }
   return o;
 }
@@ -56,6 +62,9 @@ std::string scene_text(const Settings& s, const std::string& variant) {
   append_key_value(text, "nx", static_cast<Real>(s.nx));
   append_key_value(text, "sigma", s.sigma);
   append_key_value(text, "alpha_b", s.alpha_b);
+  append_key_value(text, "overclean", s.overclean);
+  append_key_value(text, "courant", s.courant);
+  append_key_value(text, "local_ch", s.local_ch ? 1.0 : 0.0);
   return text;
 }
 
@@ -86,7 +95,7 @@ RunSummary run(const std::string& variant, const Settings& s) {
   prepare_output_dir(dir, "orszag_tang");
   const int nx = s.nx, ny = hexagonal_rows(nx);
   const ParticleSet2D p = hexagonal_lattice_unit_box(nx, ny, kOrszagTangRho);
-  SpmhdOptions o = variant_options(variant, s.sigma, s.alpha_b);
+  SpmhdOptions o = variant_options(variant, s);
   o.h_initial = o.eta * std::sqrt(1.0 / (static_cast<Real>(nx) * ny));
   SpmhdScheme<2> scheme(p.m, o, unit_periodic_box());
   std::vector<Real> y(scheme.size(), 0);
@@ -198,6 +207,12 @@ int main(int argc, char** argv) {
   parser.add("--variant", &variant, "div B control (all: the five in turn)", OneOf{allowed});
   parser.add("--sigma", &s.sigma, "cleaning damping, 1/tau = sigma c_h / h", NonNegative{});
   parser.add("--alpha-b", &s.alpha_b, "artificial resistivity strength of the resistivity variants", Positive{});
+  parser.add("--overclean", &s.overclean, "cleaning speed c_h = overclean x max fast speed (cleaning variants)",
+             Range{1.0, 100.0});
+  parser.add_flag("--local-ch", &s.local_ch,
+                  "per-particle c_h = overclean x own fast speed, psi/c_h evolved (Tricco, Price & Bate 2016)");
+  parser.add("--courant", &s.courant, "Courant number C of dt = C h / max(v_sig, c_h), every variant",
+             Range{0.01, 1.0});
   add_run_options(parser, s.run, "<out>/<variant>/checkpoint.bin");
   const std::vector<const char*> parse_argv = as_argv(args);
   parser.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());

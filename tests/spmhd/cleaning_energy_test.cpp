@@ -3,6 +3,7 @@
 // damping dE/dt = -sum m psi^2/(rho c_h^2 tau) (eq. (24)); the previous form does not conserve E.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -21,7 +22,8 @@ struct DiscCase {
   SpmhdScheme<2> scheme;
   std::vector<Real> y, ydot;
 
-  DiscCase(Cleaning form, Real sigma) : scheme(p.m, options(form, sigma), std::nullopt, p.x) {
+  DiscCase(Cleaning form, Real sigma, Real overclean = 1) : DiscCase(options(form, sigma, overclean)) {}
+  explicit DiscCase(const SpmhdOptions& o) : scheme(p.m, o, std::nullopt, p.x) {
     y.assign(scheme.size(), 0);
     ydot.assign(scheme.size(), 0);
     disc_initial_field(scheme, p, y.data());
@@ -36,8 +38,9 @@ struct DiscCase {
     }
     EXPECT_EQ(scheme.rhs(0, y.data(), ydot.data()), 0) << scheme.last_error();
   }
-  static SpmhdOptions options(Cleaning form, Real sigma) {
+  static SpmhdOptions options(Cleaning form, Real sigma, Real overclean) {
     SpmhdOptions o;
+    o.overclean = overclean;
     o.evolve_particles = false;
     o.cleaning = form;
     o.sigma = sigma;
@@ -50,7 +53,8 @@ struct DiscCase {
     auto dB = vector_field<3>(ydot.data(), L, Field::MagneticField);
     auto psi = scalar_field(y.data(), L, Field::Psi);
     auto dpsi = scalar_field(ydot.data(), L, Field::Psi);
-    const Real ch2 = scheme.cleaning_speed() * scheme.cleaning_speed();
+    // With local_ch the state is psi/c_h,a and the psi energy is m (psi/c_h)^2 / (2 rho).
+    const Real ch2 = scheme.options().local_ch ? 1.0 : scheme.cleaning_speed() * scheme.cleaning_speed();
     EnergyRate e;
     for (std::size_t a = 0; a < p.size(); ++a) {
       const Real m = p.m[a], rho = scheme.rho()[a];
@@ -84,6 +88,53 @@ TEST(SpmhdCleaning, ConstrainedWithDampingOnlyDissipates) {
     expected -= c.p.m[a] * psi(a) * psi(a) / (c.scheme.rho()[a] * ch * ch) * (0.3 * ch / c.scheme.h()[a]);
   EXPECT_LT(e.rate, 0);
   EXPECT_NEAR(e.rate, expected, 1e-14 * e.scale);
+}
+
+// Overcleaning (c_h = f x the base speed, Tricco, Price & Bate 2016; Phantom's overcleanfac): the
+// cleaning speed is exactly f times the base, the energy with the overcleaned c_h is still conserved
+// to round-off without damping, and with damping dE/dt is eq. (24) with 1/tau = sigma f c_h / h.
+TEST(SpmhdCleaning, OvercleaningKeepsEnergyConservationAndScalesTheSpeed) {
+  DiscCase c(Cleaning::Constrained, 0.0, 4.0);
+  EXPECT_EQ(c.scheme.cleaning_speed(), 4.0);  // fixed_ch = 1, overclean = 4
+  const EnergyRate e = c.energy_rate();
+  ASSERT_GT(e.scale, 0);
+  EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;
+
+  DiscCase d(Cleaning::Constrained, 0.3, 4.0);
+  const EnergyRate ed = d.energy_rate();
+  auto psi = scalar_field(d.y.data(), d.scheme.layout(), Field::Psi);
+  Real expected = 0;
+  for (std::size_t a = 0; a < d.p.size(); ++a)
+    expected -= d.p.m[a] * psi(a) * psi(a) / (d.scheme.rho()[a] * 16.0) * (0.3 * 4.0 / d.scheme.h()[a]);
+  EXPECT_NEAR(ed.rate, expected, 1e-14 * ed.scale);
+  // The time step respects the overcleaned speed: C h_min / c_h (fixed particles: no v term).
+  const Real hmin = *std::min_element(d.scheme.h().begin(), d.scheme.h().end());
+  EXPECT_DOUBLE_EQ(d.scheme.max_stable_dt(0, d.y.data()), d.scheme.options().courant * hmin / 4.0);
+}
+
+// Per-particle c_h,a = f |B_a|/sqrt(rho_a) (fixed particles: P = 0), the state holding psi/c_h
+// (Tricco, Price & Bate 2016): E = sum m (B^2 + (psi/c_h)^2)/(2 rho) is conserved to round-off
+// although c_h varies from particle to particle (the B_x bump of eq. (40)).
+TEST(SpmhdCleaning, LocalCleaningSpeedConservesEnergyToRoundOff) {
+  SpmhdOptions o = DiscCase::options(Cleaning::Constrained, 0.0, 2.0);
+  o.fixed_ch = 0;
+  o.local_ch = true;
+  DiscCase c(o);
+  const auto& ch = c.scheme.cleaning_speeds();
+  const auto [lo, hi] = std::minmax_element(ch.begin(), ch.end());
+  EXPECT_GT(*hi, 1.3 * *lo);  // genuinely variable (|B| from B0 at the edge to sqrt(2) B0 at the centre)
+  auto B = vector_field<3>(c.y.data(), c.scheme.layout(), Field::MagneticField);
+  for (std::size_t a = 0; a < c.p.size(); ++a)
+    EXPECT_DOUBLE_EQ(ch[a], 2.0 * std::sqrt(B.col(a).squaredNorm() / c.scheme.rho()[a]));
+  const EnergyRate e = c.energy_rate();
+  ASSERT_GT(e.scale, 0);
+  EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;
+}
+
+TEST(SpmhdCleaning, OvercleanBelowOneIsRejected) {
+  const ParticleSet2D p = disc_square_lattice(1.0, 0.04, 1.0);
+  SpmhdOptions o = DiscCase::options(Cleaning::Constrained, 0.3, 0.5);
+  EXPECT_THROW(SpmhdScheme<2>(p.m, o, std::nullopt, p.x), std::invalid_argument);
 }
 
 TEST(SpmhdCleaning, NonConservativeFormDoesNotConserveEnergy) {

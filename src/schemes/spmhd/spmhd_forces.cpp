@@ -31,7 +31,7 @@ void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) oM_[D * D * a + D * i + j] = o * (B[i] * B[j] - (i == j ? ptot : 0.0));  // eq. (8)
     for (int k = 0; k < 3; ++k) oB_[3 * a + k] = o * B[k];
-    opsi_[a] = psi ? o * psi[a] : 0;
+    opsi_[a] = psi ? o * psi[a] * (opt_.local_ch ? chs_[a] : 1.0) : 0;  // local_ch: the state is psi / c_h
   }
 }
 
@@ -147,8 +147,10 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
     if (psi) {
       // Constrained: dB/dt = -rho_a sum(...) (23). Previous form: dB/dt = -(difference grad psi).
       dB.template head<D>() -= cleaning == Cleaning::Constrained ? Vec<D>(rhoa * grad_psi) : Vec<D>(inv_orho * grad_psi);
-      Real dpsi = -ch2 * divB;                                               // eq. (19)
-      if (opt_.sigma > 0) dpsi -= opt_.sigma * ch_ / ha * psi[a];           // -psi / tau
+      // eq. (19); with local_ch the state is psi/c_h,a (Tricco, Price & Bate 2016): d(psi/c_h)/dt =
+      // -c_h div B - (psi/c_h)/tau - (psi/c_h) div v / 2.
+      Real dpsi = -(opt_.local_ch ? chs_[a] : ch2) * divB;
+      if (opt_.sigma > 0) dpsi -= opt_.sigma * chs_[a] / ha * psi[a];       // -psi / tau
       if (evolve && cleaning == Cleaning::Constrained) dpsi += 0.5 * psi[a] * inv_orho * divv;  // eq. (25)
       dpsi_dt[perm[a]] = dpsi;
     }

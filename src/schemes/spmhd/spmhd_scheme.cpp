@@ -33,6 +33,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   if (!(opt_.gamma > 1)) throw std::invalid_argument("SpmhdScheme: gamma must be > 1");
   if (!(opt_.eta > 0)) throw std::invalid_argument("SpmhdScheme: eta must be > 0");
   if (opt_.sigma < 0) throw std::invalid_argument("SpmhdScheme: sigma must be >= 0");
+  if (!(opt_.overclean >= 1)) throw std::invalid_argument("SpmhdScheme: overclean must be >= 1");
   if (opt_.evolve_particles) {
     layout_.add(Field::Position, D).add(Field::Velocity, D).add(Field::InternalEnergy, 1);
     if (opt_.field == FieldRepresentation::MagneticField) {
@@ -62,6 +63,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   P_.assign(n_, 0);
   cs_.assign(n_, 0);
   cf_.assign(n_, 0);
+  chs_.assign(n_, 0);
   B_.assign(3 * n_, 0);
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
@@ -177,7 +179,9 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     cf_[a] = std::sqrt(cs_[a] * cs_[a] + b2 / rho_[a]);  // fast magnetosonic speed (upper bound)
     cmax = std::max(cmax, cf_[a]);
   }
-  ch_ = opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax;
+  ch_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
+  for (std::size_t a = 0; a < n_; ++a)
+    chs_[a] = opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cf_[a]) : ch_;
   if (!std::isfinite(ch_)) {
     error_ = "non-finite wave speed";
     return 1;
@@ -219,7 +223,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexce
   std::fill(c, c + layout_.size(), 0.0);
   if (!has_stiff_diagonal()) return 0;
   Real* cpsi = c + layout_.offset(Field::Psi);
-  for (std::size_t a = 0; a < n_; ++a) cpsi[perm_[a]] = opt_.sigma * ch_ / h_[a];  // 1/tau_a
+  for (std::size_t a = 0; a < n_; ++a) cpsi[perm_[a]] = opt_.sigma * chs_[a] / h_[a];  // 1/tau_a
   return 0;
 }
 
@@ -233,7 +237,7 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
   const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t a = 0; a < n_; ++a) {
-    Real vsig = std::max(ch_, cf_[a]);
+    Real vsig = std::max(chs_[a], cf_[a]);
     if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
   }

@@ -29,6 +29,11 @@ struct SpmhdOptions {
   Cleaning cleaning = Cleaning::None;
   Real sigma = 0.3;             // damping: 1/tau = sigma c_h / h (seed 000, §I)
   Real fixed_ch = 0;            // > 0: use this c_h; else c_h = max fast magnetosonic speed per RHS
+  Real overclean = 1;           // c_h = overclean x (fixed_ch or max fast speed), >= 1 (Phantom's overcleanfac;
+                                // Tricco, Price & Bate 2016). The damping 1/tau = sigma c_h / h and the
+                                // time step C h / max(c_h, v_sig) use this c_h.
+  bool local_ch = false;        // per-particle c_h,a = overclean x fast speed of a, with the state holding
+                                // psi / c_h (Tricco, Price & Bate 2016); false: one global c_h
 
   bool subtract_monopole_force = true;  // seed 000, eq. (9)
   Real alpha_visc = 1.0;        // artificial viscosity (0 = off)

@@ -79,7 +79,8 @@ class SpmhdScheme final : public OdeSystem {
   const std::vector<Real>& div_v() const { return in_particle_order(divv_, 1, out_divv_); }  // continuity form, eq. (25)
   const std::vector<Real>& magnetic_field() const { return in_particle_order(B_, 3, out_B_); }  // 3 x N
   const std::vector<Real>& positions() const { return in_particle_order(x_, D, out_x_); }  // D x N (fixed, or last state)
-  Real cleaning_speed() const { return ch_; }
+  Real cleaning_speed() const { return ch_; }  // global c_h (the largest if local_ch)
+  const std::vector<Real>& cleaning_speeds() const { return in_particle_order(chs_, 1, out_chs_); }  // c_h,a
 
   // rhs() into an internal buffer, to refresh the per-particle quantities above.
   int evaluate(Real t, const Real* y) noexcept;
@@ -112,13 +113,13 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> permute_scratch_;
   std::vector<Real> xg_, v_, u_, psi_, alpha_;  // gathered inputs (slot order)
   long version_ = 0;                           // bumped by every prepare()
-  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_;
+  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_, out_chs_;
   SpmhdOptions opt_;
   StateLayout layout_;
   NeighbourSearch<D> ns_;
   bool built_ = false;
   std::vector<Real> x_;  // fixed positions, or a copy of the current ones (slot order, as all below)
-  std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, B_, divB_, divv_;
+  std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, chs_, B_, divB_, divv_;
   std::vector<Real> scratch_;
   // Pair-loop arrays (SoA): 1/h, 1/h^(D+2) (kernel gradient scale), o = 1/(Omega rho^2),
   // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
