@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include "sphark/core/types.hpp"
 #include "sphark/neighbours/neighbour_search.hpp"
@@ -62,10 +63,33 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
   Real h_max = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : not_converged, outside) reduction(max : h_max)
   for (std::size_t i = 0; i < n; ++i) {
+    // The list entries' squared distances, distances and masses, gathered once per particle: the
+    // Newton iterations below re-sum them at each trial h (same terms, same order as
+    // density_sum(), so the result is bit-identical to walking the lists each time).
+    static thread_local std::vector<Real> r2s, rs, ms;
+    const NeighbourList& L = ns.list();
+    r2s.clear(); rs.clear(); ms.clear();
+    for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
+      const std::size_t j = L.indices[k];
+      const Real r2 = ns.separation(x, i, j).squaredNorm();
+      r2s.push_back(r2);
+      rs.push_back(std::sqrt(r2));
+      ms.push_back(m[j]);
+    }
     const Real m_eta = m[i] * std::pow(eta, D);
+    auto sums = [&](Real hh, Real& r, Real& dr) {  // density_sum() over the gathered entries
+      r = m[i] * K::w(0, hh);
+      dr = m[i] * kernel_dw_dh<D, K>(0, hh);
+      const Real r_max2 = (K::support * hh) * (K::support * hh);
+      for (std::size_t k = 0; k < r2s.size(); ++k) {
+        if (r2s[k] >= r_max2) continue;
+        r += ms[k] * K::w(rs[k], hh);
+        dr += ms[k] * kernel_dw_dh<D, K>(rs[k], hh);
+      }
+    };
     auto f_of = [&](Real hh, Real& r, Real& df) {
       Real dr;
-      density_sum<D, K>(ns, x, m, i, hh, r, dr);
+      sums(hh, r, dr);
       const Real rho_h = m_eta / std::pow(hh, D);
       df = dr + D * rho_h / hh;
       return r - rho_h;
@@ -87,7 +111,7 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
     // (to within tol); count that as outside the lists so the caller rebuilds them.
     if (hh >= h_list * (1 - 10 * tol)) ++outside;
     Real dr;
-    density_sum<D, K>(ns, x, m, i, hh, r, dr);
+    sums(hh, r, dr);
     h[i] = hh;
     rho[i] = r;
     omega[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)

@@ -45,7 +45,7 @@ struct LatticeParams {
   VelocityBc velocity = VelocityBc::FreeSlip;
   Real cfl = 0.25;        // dt <= cfl h_min / (c_max + |v|_max), dt <= cfl sqrt(h_min / a_max)
   Real h_ref = 0;         // uniform-lattice h (eta dx) for the accumulation event
-  Real accumulation = 0.25;  // accumulation when a ghost's h < accumulation * h_ref
+  Real accumulation = 0.05;  // accumulation when a ghost's h < accumulation * h_ref ("H close to zero")
   Real h_tol = 1e-7;      // relative tolerance of the h-rho Newton solve
 };
 
