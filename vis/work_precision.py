@@ -43,11 +43,15 @@ LABELS = {
     "orszag_tang": ("max L1 density difference / rho0 vs reference run",
                     "max RMS position difference / box vs reference run",
                     None),
+    "lattice": ("max RMS velocity difference / v0 vs reference run",
+                "max RMS position difference / R vs reference run",
+                None),
 }
 SHORT_LABELS = {"drop": ("semi-axis time error", "RMS position time error / R", "semi-axis error vs exact"),
                 "disc": ("cleaning-energy time error", "RMS field time error", "cleaning-energy change"),
                 "disc_damped": ("cleaning-energy time error", "RMS field time error", None),
-                "orszag_tang": ("L1 density time error", "RMS position time error", None)}
+                "orszag_tang": ("L1 density time error", "RMS position time error", None),
+                "lattice": ("RMS velocity time error / v0", "RMS position time error / R", None)}
 
 
 def fail(msg):
