@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages sphark needs, only those missing. Run as root (or with sudo).
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config
-      libsundials-dev libeigen3-dev libnanoflann-dev libvtk9-dev zlib1g-dev
+      libsundials-dev libeigen3-dev libvtk9-dev zlib1g-dev
       libgtest-dev libgmock-dev libbenchmark-dev
       python3-matplotlib python3-numpy python3-vtk9 xvfb xauth)
 missing=()
