@@ -178,7 +178,12 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
       save(t);
       break;
     }
-    if (st == AdvanceStatus::RootFound) continue;
+    if (st == AdvanceStatus::RootFound) {
+      if (!hooks.root || !hooks.root(t, stepper->roots_found())) continue;
+      record(t);  // the event ends the run at its root time
+      res.status = TimeLoopStatus::EndedEarly;
+      break;
+    }
     record(t);
     if (hooks.finished && hooks.finished(t)) res.status = TimeLoopStatus::EndedEarly;
     if (s.checkpoint_every > 0 && t >= next_checkpoint - 1e-12 * t_end) {
