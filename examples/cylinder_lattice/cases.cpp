@@ -16,7 +16,7 @@
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/progress.hpp"
 #include "sphark/io/visualise.hpp"
-#include "sphark/io/vtk_series.hpp"
+#include "sphark/run/run_outputs.hpp"
 #include "sphark/run/signals.hpp"
 #include "sphark/run/time_loop.hpp"
 
@@ -46,6 +46,20 @@ std::string fields_csv(const LatticeSystem& sys, const Real* y) {
     os << x[2 * a] << ',' << x[2 * a + 1] << ',' << v[2 * a] << ',' << v[2 * a + 1] << ',' << sys.density()[a] << ','
        << sys.smoothing_length()[a] << '\n';
   return os.str();
+}
+
+// The ghost series up to a checkpoint: its particle frame list ("t lattice_NNNNN.vtp" lines)
+// with the ghosts' file of each frame, where that file exists in `dir`.
+std::string ghost_frames(const std::string& lattice_frames, const std::filesystem::path& dir) {
+  std::istringstream in(lattice_frames);
+  std::string text;
+  for (std::string line; std::getline(in, line);) {
+    const auto at = line.find("lattice_");
+    if (at == std::string::npos) continue;
+    line.replace(at, 8, "ghosts_");
+    if (std::filesystem::exists(dir / line.substr(line.find(' ') + 1))) text += line + "\n";
+  }
+  return text;
 }
 
 struct RunOutcome {
@@ -89,7 +103,8 @@ RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std
   ts.inject_nan_at = s.control.inject_nan_at;
   ts.progress_interval = 10;
 
-  VtkSeriesWriter ghosts(dir, "ghosts");
+  ResumableVtkSeries ghosts(dir, "ghosts");  // frame k of the ghosts goes with lattice_k
+  if (s.restart) ghosts.restore(ghost_frames(s.restart->text("frames"), dir));
   Real sampled_g[2] = {1, 1};
   TimeLoopHooks hooks;
   hooks.diagnostics = [&](Real t, const Real* yy, const StepperStats& st) {

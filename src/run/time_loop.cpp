@@ -180,7 +180,13 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     }
     if (st == AdvanceStatus::RootFound) {
       if (!hooks.root || !hooks.root(t, stepper->roots_found())) continue;
-      record(t);  // the event ends the run at its root time
+      const std::filesystem::path before = res.last_frame;
+      record(t);  // the event ends the run at its root time, with a frame of that state
+      if (vtk && res.last_frame == before) {
+        ScopedPhase phase(Phase::Output);
+        write_frame(t);
+        csv.flush();
+      }
       res.status = TimeLoopStatus::EndedEarly;
       break;
     }

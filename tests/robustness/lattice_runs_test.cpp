@@ -135,6 +135,15 @@ TEST(LatticeRuns, SigintLeavesALoadableCheckpointNamingTheMap) {
                                             std::to_string(c.t + 0.5)},
                          dir.path());
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  // the restart (same --out) continues both series: one ghost frame per particle frame
+  const auto frames = [&](const std::string& pvd) {
+    const std::string xml = slurp(out / "single_nonlinear" / pvd);
+    std::size_t n = 0;
+    for (auto at = xml.find("file=\""); at != std::string::npos; at = xml.find("file=\"", at + 1)) ++n;
+    return n;
+  };
+  EXPECT_GE(frames("lattice.pvd"), 3u);
+  EXPECT_EQ(frames("ghosts.pvd"), frames("lattice.pvd"));
 }
 
 TEST(LatticeRuns, ForcedNanFailsWithTheLastGoodState) {
@@ -176,4 +185,24 @@ TEST(LatticeRuns, SigintDuringTheEnsembleKeepsTheRunsDone) {
   EXPECT_NE(f.err.find("after " + std::to_string(rows) + " of 1000 runs"), std::string::npos) << f.err;
   std::istringstream in(csv);
   for (std::string line; std::getline(in, line);) EXPECT_EQ(std::count(line.begin(), line.end(), ','), 4) << line;
+}
+
+TEST(LatticeRuns, AnEventEndsTheDrivenRunAtItsRootWithAFrame) {
+  // the mirror map's ghosts pile up at once (docs/cylinder_lattice.md): accumulation event, exit 0
+  TempDir dir;
+  const fs::path out = dir.path() / "event";
+  const Finished f = run(lattice_binary(), kSingle + Args{"--map", "mirror", "--out", out.string(), "--t-end", "2",
+                                                          "--output-every", "0.5"},
+                         dir.path());
+  EXPECT_EQ(f.exit_code, 0) << f.err;
+  const std::string csv = slurp(out / "single_mirror" / "diagnostics.csv");
+  const std::vector<Real> t = csv_column(csv, "t"), h = csv_column(csv, "min_ghost_h_over_h_ref");
+  ASSERT_EQ(t.size(), 2u);  // t = 0 and the root time, before the first grid time 0.5
+  EXPECT_GT(t[1], 0);
+  EXPECT_LT(t[1], 0.5);
+  EXPECT_GT(h[0], 0.05);  // above the threshold (0.05, --accumulation default) at t = 0 ...
+  EXPECT_LT(h[1], 0.05);  // ... below it where the stepper located the crossing (measured 0.041)
+  EXPECT_NE(slurp(out / "single_mirror" / "summary.csv").find("\"accumulation\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "single_mirror" / "lattice_00001.vtp"));
+  EXPECT_TRUE(fs::exists(out / "single_mirror" / "fields_end.csv"));
 }
