@@ -1,6 +1,8 @@
 #include "cases.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <mutex>
@@ -14,7 +16,9 @@
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/progress.hpp"
 #include "sphark/io/visualise.hpp"
-#include "sphark/io/vtk_series.hpp"
+#include "sphark/run/run_outputs.hpp"
+#include "sphark/run/signals.hpp"
+#include "sphark/run/time_loop.hpp"
 
 namespace cylinder_lattice {
 
@@ -24,6 +28,12 @@ GhostMap parse_map(const std::string& name) { return name == "mirror" ? GhostMap
 
 namespace {
 std::mutex print_mutex;
+
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 // Particle fields of state y as CSV text (for the Fig. 9 interpolation in vis/cylinder_lattice.py).
 std::string fields_csv(const LatticeSystem& sys, const Real* y) {
@@ -38,35 +48,76 @@ std::string fields_csv(const LatticeSystem& sys, const Real* y) {
   return os.str();
 }
 
+// The ghost series up to a checkpoint: its particle frame list ("t lattice_NNNNN.vtp" lines)
+// with the ghosts' file of each frame, where that file exists in `dir`.
+std::string ghost_frames(const std::string& lattice_frames, const std::filesystem::path& dir) {
+  std::istringstream in(lattice_frames);
+  std::string text;
+  for (std::string line; std::getline(in, line);) {
+    const auto at = line.find("lattice_");
+    if (at == std::string::npos) continue;
+    line.replace(at, 8, "ghosts_");
+    if (std::filesystem::exists(dir / line.substr(line.find(' ') + 1))) text += line + "\n";
+  }
+  return text;
+}
+
 struct RunOutcome {
   std::string map;
   LatticeRunResult result;
+  TimeLoopResult loop;
   double wall_seconds = 0;
 };
 
-// One run with a VTK series (real particles and ghosts), per-frame CSVs and progress lines.
-RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std::filesystem::path& dir,
-                            const std::string& label, bool single_thread) {
-#ifdef _OPENMP
-  if (single_thread) omp_set_num_threads(1);
-#endif
+// One run through the shared driver (run/time_loop.hpp): a VTK series of the real particles,
+// per frame the ghosts and a fields CSV, checkpoints, --restart, signals, last good state. The
+// penetration / accumulation roots (seed 004, eq. 37) end the run at their root time.
+RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   LatticeRunConfig cfg = s.run;
   cfg.params.map = parse_map(map);
-  VtkSeriesWriter fluid(dir, "lattice"), ghosts(dir, "ghosts");
-  std::ostringstream progress_text;
-  ProgressReporter progress(0, cfg.t_end, 20, progress_text);
-  int frame = 0;
-  const auto observe = [&](Real t, LatticeSystem& sys, const Real* y) {
-    ParticleFrame f;
-    f.dim = 2;
-    f.count = sys.particles();
-    f.positions = y + sys.position_offset();
-    f.arrays = {{"velocity", y + sys.velocity_offset(), 2},
-                {"density", sys.density().data(), 1},
-                {"h", sys.smoothing_length().data(), 1},
-                {"pressure", sys.pressure().data(), 1}};
-    fluid.write(f, t);
+  RunOutcome out{map, {}, {}, 0};
+  const double cpu0 = process_cpu_seconds();
+  const LatticeParams p = lattice_params(cfg.params, cfg.particles);
+  LatticeSystem sys(cfg.particles, p);
+  std::vector<Real> y(sys.size(), 0.0);  // at rest
+  if (!s.restart) {
+    const std::vector<Real> x0 = initial_positions(cfg);
+    std::copy(x0.begin(), x0.end(), y.begin() + static_cast<std::ptrdiff_t>(sys.position_offset()));
+  }
+  TimeLoopSettings ts;
+  ts.program = "cylinder_lattice";
+  ts.run = map;
+  ts.argv = s.argv;
+  ts.texts = {{"scene", scene_text(s, map)}};
+  ts.t_end = cfg.t_end;
+  ts.sample_every = s.core.output_every > 0 ? s.core.output_every : cfg.t_end;
+  ts.diagnostics_csv = dir / "diagnostics.csv";
+  ts.columns = {"t", "kinetic_energy", "min_ghost_h_over_h_ref", "wall_force_x", "wall_force_y", "steps", "rhs_evals"};
+  ts.frames_dir = dir;
+  ts.frames_basename = "lattice";
+  ts.frame_every = ts.sample_every;
+  ts.checkpoint = dir / "checkpoint.bin";
+  ts.checkpoint_every = s.control.checkpoint_every;
+  ts.restart = s.restart;
+  ts.inject_nan_at = s.control.inject_nan_at;
+  ts.progress_interval = 10;
+
+  ResumableVtkSeries ghosts(dir, "ghosts");  // frame k of the ghosts goes with lattice_k
+  if (s.restart) ghosts.restore(ghost_frames(s.restart->text("frames"), dir));
+  Real sampled_g[2] = {1, 1};
+  TimeLoopHooks hooks;
+  hooks.diagnostics = [&](Real t, const Real* yy, const StepperStats& st) {
+    const int rc = sys.prepare(yy);  // density, h, ghosts of this state
+    if (rc != 0 || sys.roots(t, yy, sampled_g) != 0) sampled_g[0] = sampled_g[1] = 1;
+    Real ke = 0;
+    const Real* v = yy + sys.velocity_offset();
+    for (std::size_t i = 0; i < 2 * sys.particles(); ++i) ke += 0.5 * p.mass * v[i] * v[i];
+    const Vec<2> f = rc == 0 ? sys.wall_force() : Vec<2>(NAN, NAN);
+    return std::vector<Real>{t, ke, rc == 0 ? sys.min_ghost_h() / p.h_ref : NAN, f[0], f[1],
+                             static_cast<Real>(st.steps), static_cast<Real>(st.rhs_evals)};
+  };
+  hooks.frame = [&](Real t, const Real* yy) {  // after diagnostics(): prepared at this state
     ParticleFrame g;
     g.dim = 2;
     g.count = sys.ghost_count();
@@ -75,18 +126,46 @@ RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std
                 {"density", sys.density().data() + sys.particles(), 1},
                 {"h", sys.smoothing_length().data() + sys.particles(), 1}};
     if (g.count > 0) ghosts.write(g, t);
-    char name[64];
-    std::snprintf(name, sizeof name, "fields_%04d.csv", frame++);
-    write_file_atomically(dir / name, "# t=" + std::to_string(t) + "\n" + fields_csv(sys, y));
-    if (progress.update(t, sys.rhs_calls(), 0)) {
-      std::lock_guard<std::mutex> lock(print_mutex);
-      std::fprintf(stderr, "%s: %s", label.c_str(), progress_text.str().c_str());
-      progress_text.str("");
-    }
+    char name[64];  // fields_NNNN.csv on the frame grid, fields_end.csv at an event or a failure
+    const Real k = std::round(t / ts.frame_every);
+    if (std::abs(t - k * ts.frame_every) <= 1e-9 * ts.frame_every)
+      std::snprintf(name, sizeof name, "fields_%04ld.csv", static_cast<long>(k));
+    else
+      std::snprintf(name, sizeof name, "fields_end.csv");
+    write_file_atomically(dir / name, "# t=" + std::to_string(t) + "\n" + fields_csv(sys, yy));
+    ParticleFrame f;
+    f.dim = 2;
+    f.count = sys.particles();
+    f.positions = yy + sys.position_offset();
+    f.arrays = {{"velocity", yy + sys.velocity_offset(), 2},
+                {"density", sys.density().data(), 1},
+                {"h", sys.smoothing_length().data(), 1},
+                {"pressure", sys.pressure().data(), 1}};
+    return f;
+  };
+  const auto event = [&](const Real* g) {
+    if (g[0] <= 0) out.result.reason = "penetration";
+    else if (g[1] <= 0) out.result.reason = "accumulation";
+    return !out.result.reason.empty();
+  };
+  // Events already present at a sample (at t = 0: no sign change for the stepper to see); the
+  // event functions of the sampled state come from diagnostics(), called just before.
+  hooks.finished = [&](Real) { return event(sampled_g); };
+  hooks.root = [&](Real, const std::vector<int>& found) {
+    Real g[2] = {1, 1};
+    if (!found.empty() && found[0] != 0) g[0] = 0; else g[1] = 0;
+    return event(g);
   };
   const auto w0 = std::chrono::steady_clock::now();
-  RunOutcome out{map, run_lattice(cfg, s.core.output_every, observe), 0};
+  out.loop = run_time_loop(sys, sys.layout(), cfg.stepper, y, ts, hooks);
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  out.result.t_max = out.loop.t_reached;
+  out.result.stats = out.loop.stats;
+  out.result.rhs_calls = out.loop.stats.rhs_evals;
+  if (out.loop.status == TimeLoopStatus::Reached) out.result.reason = "t_end";
+  if (out.loop.status == TimeLoopStatus::Failed) out.result.reason = "failure: " + out.loop.failure;
+  if (out.loop.status == TimeLoopStatus::Stopped) out.result.reason = "stopped";
+  out.result.cpu_seconds = process_cpu_seconds() - cpu0;
   return out;
 }
 
@@ -106,38 +185,56 @@ std::string summary_csv(const std::vector<RunOutcome>& runs) {
 }
 }  // namespace
 
-int run_single(const Settings& s) {
-  const std::string map = s.maps.front();
-  const RunOutcome o = run_with_outputs(s, map, s.core.out / ("single_" + map), "single " + map, false);
-  print_outcome("single " + map, o);
-  write_file_atomically(s.core.out / ("single_" + map) / "summary.csv", summary_csv({o}));
-  return o.result.reason == "t_end" ? 0 : 3;
+std::string scene_text(const Settings& s, const std::string& map) {
+  const LatticeParams& p = s.run.params;
+  std::string text;
+  append_key_value(text, "case", s.kase);
+  append_key_value(text, "map", map);
+  append_key_value(text, "bc", s.bc);
+  append_key_value(text, "particles", static_cast<Real>(s.run.particles));
+  append_key_value(text, "seed", static_cast<Real>(s.run.seed));
+  append_key_value(text, "min_separation", s.run.min_separation);
+  append_key_value(text, "relax_iterations", static_cast<Real>(s.run.relax_iterations));
+  append_key_value(text, "v0", p.v0);
+  append_key_value(text, "tau", p.tau);
+  append_key_value(text, "sound_speed", p.sound_speed);
+  append_key_value(text, "rho0", p.rho0);
+  append_key_value(text, "eta", p.eta);
+  append_key_value(text, "alpha", p.alpha);
+  append_key_value(text, "cfl", p.cfl);
+  append_key_value(text, "accumulation", p.accumulation);
+  append_key_value(text, "stepper", s.core.stepper);
+  return text;
 }
 
+int run_single(const Settings& s) {
+  const std::string map = s.maps.front();
+  const RunOutcome o = run_with_outputs(s, map, s.core.out / ("single_" + map));
+  print_outcome("single " + map, o);
+  write_file_atomically(s.core.out / ("single_" + map) / "summary.csv", summary_csv({o}));
+  return report_time_loop_end(o.loop);
+}
+
+// The maps one after the other (each may use every OpenMP thread); a stop signal or a failure
+// ends the case after that map's run (its checkpoint names the map: --restart resumes it).
 int run_medium(const Settings& s) {
-  std::vector<RunOutcome> runs(s.maps.size());
-  const bool parallel = s.maps.size() > 1 && s.core.threads != 1;
-  if (parallel) {  // one map per thread, each run single-threaded
-    std::vector<std::thread> pool;
-    for (std::size_t k = 0; k < s.maps.size(); ++k)
-      pool.emplace_back([&, k] { runs[k] = run_with_outputs(s, s.maps[k], s.core.out / s.maps[k], "medium " + s.maps[k], true); });
-    for (auto& t : pool) t.join();
-  } else {
-    for (std::size_t k = 0; k < s.maps.size(); ++k)
-      runs[k] = run_with_outputs(s, s.maps[k], s.core.out / s.maps[k], "medium " + s.maps[k], false);
-  }
+  std::vector<RunOutcome> runs;
   int status = 0;
-  for (const auto& o : runs) {
-    print_outcome("medium " + o.map, o);
-    if (o.result.reason != "t_end") status = 3;
+  for (const auto& map : s.maps) {
+    runs.push_back(run_with_outputs(s, map, s.core.out / map));
+    print_outcome("medium " + map, runs.back());
+    status = report_time_loop_end(runs.back().loop);
+    if (status != 0) break;
   }
-  write_file_atomically(s.core.out / "summary.csv", summary_csv(runs));
+  write_file_atomically(s.core.out / (s.maps.size() > 1 ? "summary.csv" : "summary_" + s.maps[0] + ".csv"),
+                        summary_csv(runs));
+  if (status != 0) return status;
   if (s.core.render) {
     std::vector<std::string> args{"fig9", s.core.out.string()};
     for (const auto& m : s.maps) args.push_back(m);
     if (!run_python("cylinder_lattice.py", args, false)) return 1;
   }
-  return status;
+  return 0;
 }
 
 int run_ensemble_case(const Settings& s) {
@@ -146,6 +243,7 @@ int run_ensemble_case(const Settings& s) {
     for (Real v0 : s.v0s)
       for (int seed = 1; seed <= s.seeds; ++seed) jobs.push_back({parse_map(m), v0, static_cast<unsigned>(seed)});
   const int threads = s.core.threads > 0 ? s.core.threads : 2;
+  install_stop_handlers();  // SIGINT/SIGTERM: the runs in progress finish, the CSVs hold the runs done
   std::fprintf(stderr, "cylinder_lattice: ensemble of %zu runs on %d thread(s)\n", jobs.size(), threads);
   const auto w0 = std::chrono::steady_clock::now();
   std::size_t done = 0;
@@ -160,7 +258,10 @@ int run_ensemble_case(const Settings& s) {
   csv << "map,v0,seed,t_max,reason\n";
   runs << "map,v0,seed,t_max,reason,steps,rhs_calls,cpu_seconds\n";
   double cpu = 0;
+  std::size_t completed = 0;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
+    if (results[i].reason.empty()) continue;  // not started (stop signal)
+    ++completed;
     char row[160];
     std::snprintf(row, sizeof row, "%s,%.2f,%u,%.9g,", map_name(jobs[i].map).c_str(), jobs[i].v0, jobs[i].seed,
                   results[i].t_max);
@@ -174,6 +275,11 @@ int run_ensemble_case(const Settings& s) {
   }
   write_file_atomically(s.core.out / "ensemble.csv", csv.str());
   write_file_atomically(s.core.out / "ensemble_runs.csv", runs.str());
+  if (const int sig = stop_requested()) {
+    std::fprintf(stderr, "cylinder_lattice: ensemble stopped by signal %d after %zu of %zu runs; %s holds them\n", sig,
+                 completed, jobs.size(), (s.core.out / "ensemble.csv").c_str());
+    return 128 + sig;
+  }
   // Table: fraction reaching t_end and mean t_max per map and v0.
   std::printf("%-10s %6s %10s %10s   reasons\n", "map", "v0", "reach_t_end", "mean_t_max");
   for (const auto& m : s.maps)

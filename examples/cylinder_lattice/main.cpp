@@ -5,14 +5,20 @@
 #include <cstdio>
 #include <algorithm>
 #include <exception>
+#include <optional>
 #include <string>
 
 #include "cases.hpp"
 #include "sphark/cli/options.hpp"
+#include "sphark/core/profile.hpp"
+#include "sphark/run/restart.hpp"
+#include "sphark/run/signals.hpp"
 
 using namespace sphark;
 
 int main(int argc, char** argv) {
+  const std::optional<Checkpoint> restart = load_restart_option(argc, argv, "cylinder_lattice");
+  const std::vector<std::string> args = run_arguments("cylinder_lattice", argc, argv, restart ? &*restart : nullptr);
   cylinder_lattice::Settings s;
   s.core.out = "out/cylinder_lattice";
   s.core.t_end = 10;
@@ -20,7 +26,7 @@ int main(int argc, char** argv) {
   s.core.output_every = 0;
   s.core.threads = 0;
   LatticeParams& p = s.run.params;
-  std::string kase = "single", map = "default", bc = "free-slip";
+  std::string &kase = s.kase, map = "default", &bc = s.bc;
   long particles = 0, seed = 1;
   s.v0s = {0.05, 0.10, 0.15, 0.20, 0.25, 0.30, 0.35, 0.40, 0.45, 0.50, 0.55, 0.60, 0.65, 0.70, 0.75};
 
@@ -47,12 +53,17 @@ int main(int argc, char** argv) {
   op.add("--accumulation", &p.accumulation, "accumulation event: a ghost's h below this fraction of eta dx",
          Range{0, 1});
   op.add("--min-separation", &s.run.min_separation, "random start: minimum pair distance / dx", Range{0, 0.8});
-  op.parse_or_exit(argc, argv);
+  add_run_options(op, s.control, "<out>/single_<map>/ or <out>/<map>/checkpoint.bin (single, medium)");
+  const std::vector<const char*> parse_argv = as_argv(args);
+  op.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
+  check_run_options(op, s.control, s.core);
+  if (kase == "ensemble" && (s.control.checkpoint_every > 0 || restart || s.control.inject_nan_at > 0))
+    op.fail(s.control.checkpoint_every > 0 ? "--checkpoint-every" : restart ? "--restart" : "--inject-nan-at",
+            "not available with --case ensemble (many short runs; SIGINT keeps the runs done in ensemble.csv)");
 
   if (map == "default") map = kase == "single" ? "nonlinear" : "both";
   if (s.core.stepper == "ark-imex") op.fail("--stepper", "ark-imex: the lattice system has no stiff part (use an ERK table or leapfrog)");
   if (kase == "single" && map == "both") op.fail("--map", "'both' is not allowed with --case single (mirror or nonlinear)");
-  if (s.core.output_every > s.core.t_end) op.fail("--output-every", "must not exceed --t-end");
   s.maps = map == "both" ? std::vector<std::string>{"mirror", "nonlinear"} : std::vector<std::string>{map};
   p.velocity = bc == "no-slip" ? VelocityBc::NoSlip : VelocityBc::FreeSlip;
   if (p.tau == 0) p.tau = -1;
@@ -71,7 +82,18 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     op.fail("--min-separation", e.what());
   }
+  if (restart) {  // one map: the checkpoint's
+    const std::string name = restart->text("run");
+    if (map != "both" && map != name) op.fail("--map", map + " contradicts the checkpoint (map " + name + ")");
+    s.maps = {name};
+    check_restart_text(op, *restart, "scene", cylinder_lattice::scene_text(s, name), "scene parameters");
+    check_restart_t_end(op, *restart, s.core.t_end);
+  }
+  run_profile().enable(s.core.profile);
   prepare_output_dir(s.core.out, op.program());
+  if (kase != "ensemble") install_stop_handlers();
+  s.argv.assign(args.begin() + 1, args.end());
+  s.restart = restart ? &*restart : nullptr;
   if (kase != "ensemble") apply_thread_count(s.core.threads);
   try {
     if (kase == "single") return cylinder_lattice::run_single(s);

@@ -178,7 +178,18 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
       save(t);
       break;
     }
-    if (st == AdvanceStatus::RootFound) continue;
+    if (st == AdvanceStatus::RootFound) {
+      if (!hooks.root || !hooks.root(t, stepper->roots_found())) continue;
+      const std::filesystem::path before = res.last_frame;
+      record(t);  // the event ends the run at its root time, with a frame of that state
+      if (vtk && res.last_frame == before) {
+        ScopedPhase phase(Phase::Output);
+        write_frame(t);
+        csv.flush();
+      }
+      res.status = TimeLoopStatus::EndedEarly;
+      break;
+    }
     record(t);
     if (hooks.finished && hooks.finished(t)) res.status = TimeLoopStatus::EndedEarly;
     if (s.checkpoint_every > 0 && t >= next_checkpoint - 1e-12 * t_end) {

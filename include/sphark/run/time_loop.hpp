@@ -70,6 +70,10 @@ struct TimeLoopHooks {
   // Optional: true ends the run early but normally after the sample at t (e.g. a blow-up the scene
   // measures, like the non-conservative cleaning's growth).
   std::function<bool(Real t)> finished;
+  // Optional: called when the stepper stops at a root of the system's roots() (which ones: the
+  // stepper's roots_found()); true ends the run early after a sample and a frame at that t, false (or no
+  // hook) continues the integration.
+  std::function<bool(Real t, const std::vector<int>& found)> root;
   // Named run-loop numbers saved in checkpoints and restored on restart (bound by pointer).
   std::vector<std::pair<std::string, Real*>> state;
 };

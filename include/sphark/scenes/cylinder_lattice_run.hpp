@@ -64,6 +64,8 @@ struct EnsembleJob {
 // Runs every job (cfg with its map, v0, seed) on `threads` threads, each run on one OpenMP
 // thread; results[i] belongs to jobs[i] whatever the thread count (runs are independent and
 // deterministic). on_done(i, result) is called under a lock after each run (may be empty).
+// After SIGINT/SIGTERM (run/signals.hpp) no new run starts: runs never started keep an empty
+// reason.
 std::vector<LatticeRunResult> run_ensemble(const LatticeRunConfig& cfg, const std::vector<EnsembleJob>& jobs,
                                            int threads,
                                            const std::function<void(std::size_t, const LatticeRunResult&)>& on_done = {});

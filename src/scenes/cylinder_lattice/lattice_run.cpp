@@ -13,6 +13,7 @@
 
 #include "sphark/boundaries/wall_relaxation.hpp"
 #include "sphark/run/guarded_system.hpp"
+#include "sphark/run/signals.hpp"
 #include "sphark/scenes/cylinder_lattice_run.hpp"
 
 namespace sphark {
@@ -156,6 +157,7 @@ std::vector<LatticeRunResult> run_ensemble(const LatticeRunConfig& cfg, const st
     omp_set_num_threads(1);  // each run single-threaded: the ensemble is spread over threads
 #endif
     for (std::size_t i = next++; i < jobs.size(); i = next++) {
+      if (stop_requested()) break;  // SIGINT/SIGTERM: runs in progress finish, no new ones start
       LatticeRunConfig c = cfg;
       c.params.map = jobs[i].map;
       c.params.v0 = jobs[i].v0;
