@@ -53,6 +53,31 @@ inline void density_sum(const NeighbourSearch<D>& ns, const Real* x, const Real*
   }
 }
 
+// seed 000, eqs. (4)-(5): the h of one particle, root of f(h) = rho(h) - m (eta/h)^D on
+// (0, h_list], by Newton-Raphson from h_start with a bisection fallback when Newton leaves the
+// bracket or stalls (> 30 iterations), to |h_new - h| < tol h. sums(h, rho, drho_dh) evaluates
+// the density sum (4) and its h-derivative at h; m_eta = m eta^D. Counts the iterations.
+template <int D, class Sums, class Count>
+Real solve_smoothing_length(Sums&& sums, Real h_start, Real h_list, Real m_eta, Real tol, bool& converged,
+                            Count& iterations) {
+  Real hh = std::min(h_start, h_list);
+  Real lo = 0, hi = h_list;  // bracket: f < 0 below the root, f > 0 above (f increasing)
+  converged = false;
+  Real r = 0, dr = 0;
+  for (int it = 0; it < 100 && !converged; ++it) {
+    ++iterations;
+    sums(hh, r, dr);
+    const Real rho_h = m_eta / std::pow(hh, D);  // seed 000, eq. (5): rho(h) = m (eta / h)^D
+    const Real f = r - rho_h, df = dr + D * rho_h / hh;
+    if (f < 0) lo = std::max(lo, hh); else hi = std::min(hi, hh);
+    Real h_new = (df > 0) ? hh - f / df : -1;
+    if (!(h_new >= lo && h_new <= hi) || it > 30) h_new = 0.5 * (lo + hi);  // bisection fallback
+    converged = std::abs(h_new - hh) < tol * hh;
+    hh = h_new;
+  }
+  return hh;
+}
+
 // Solves (4)-(5) for every particle. h is the initial guess on input (e.g. the previous h).
 // h_list: the largest h the lists can serve (ns.radius() / K::support for fresh lists; less when
 // particles moved since the build).
@@ -87,25 +112,10 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
         dr += ms[k] * kernel_dw_dh<D, K>(rs[k], hh);
       }
     };
-    auto f_of = [&](Real hh, Real& r, Real& df) {
-      Real dr;
-      sums(hh, r, dr);
-      const Real rho_h = m_eta / std::pow(hh, D);
-      df = dr + D * rho_h / hh;
-      return r - rho_h;
-    };
-    Real hh = std::min(h[i], h_list);
-    Real lo = 0, hi = h_list;  // bracket: f < 0 below the root, f > 0 above (f increasing)
     bool converged = false;
-    Real r = 0, df = 0;
-    for (int it = 0; it < 100 && !converged; ++it) {
-      const Real f = f_of(hh, r, df);
-      if (f < 0) lo = std::max(lo, hh); else hi = std::min(hi, hh);
-      Real h_new = (df > 0) ? hh - f / df : -1;
-      if (!(h_new >= lo && h_new <= hi) || it > 30) h_new = 0.5 * (lo + hi);  // bisection fallback
-      converged = std::abs(h_new - hh) < tol * hh;
-      hh = h_new;
-    }
+    long iterations = 0;
+    Real hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations);
+    Real r = 0;
     if (!converged) ++not_converged;
     // A root beyond h_list makes the Newton/bisection iterate converge onto h_list from below
     // (to within tol); count that as outside the lists so the caller rebuilds them.

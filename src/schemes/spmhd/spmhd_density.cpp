@@ -159,23 +159,9 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         drho_dh = -s1 * hd * hinv;
       };
       const Real m_eta = m[i] * eta_d;
-      Real hh = std::min(h_[i], h_list);
-      Real lo = 0, hi = h_list;  // bracket: f < 0 below the root, f > 0 above (f increasing)
       bool converged = false;
       Real r = 0, dr = 0;
-      // Newton-Raphson with a bisection fallback, to |h_new - h| < tol * h; rho and Omega are
-      // then evaluated at the returned h_new (quadratic convergence: (5) holds to round-off).
-      for (int it = 0; it < 100 && !converged; ++it) {
-        ++iterations;
-        density_at(hh, r, dr);
-        const Real rho_h = m_eta / std::pow(hh, D);  // seed 000, eq. (5): rho(h) = m (eta / h)^D
-        const Real f = r - rho_h, df = dr + D * rho_h / hh;
-        if (f < 0) lo = std::max(lo, hh); else hi = std::min(hi, hh);
-        Real h_new = (df > 0) ? hh - f / df : -1;
-        if (!(h_new >= lo && h_new <= hi) || it > 30) h_new = 0.5 * (lo + hi);  // bisection fallback
-        converged = std::abs(h_new - hh) < tol * hh;
-        hh = h_new;
-      }
+      Real hh = solve_smoothing_length<D>(density_at, h_[i], h_list, m_eta, tol, converged, iterations);
       if (!converged) ++not_converged;
       density_at(hh, r, dr);
       h_[i] = hh;
