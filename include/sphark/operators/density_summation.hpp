@@ -81,9 +81,14 @@ Real solve_smoothing_length(Sums&& sums, Real h_start, Real h_list, Real m_eta, 
 // Solves (4)-(5) for every particle. h is the initial guess on input (e.g. the previous h).
 // h_list: the largest h the lists can serve (ns.radius() / K::support for fresh lists; less when
 // particles moved since the build).
+// Only particles i < n_checked count towards outside_list and h_max (default: all): a caller may
+// solve extra particles (e.g. ghosts, whose own h is only a diagnostic) without letting a root
+// beyond the lists (an isolated ghost has none: h -> infinity) force rebuilds; their h then stays
+// at h_list.
 template <int D, class K>
 DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, const Real* m, std::size_t n,
-                                Real eta, Real tol, Real h_list, Real* h, Real* rho, Real* omega) {
+                                Real eta, Real tol, Real h_list, Real* h, Real* rho, Real* omega,
+                                std::size_t n_checked) {
   std::size_t not_converged = 0, outside = 0;
   Real h_max = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : not_converged, outside) reduction(max : h_max)
@@ -119,15 +124,21 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
     if (!converged) ++not_converged;
     // A root beyond h_list makes the Newton/bisection iterate converge onto h_list from below
     // (to within tol); count that as outside the lists so the caller rebuilds them.
-    if (hh >= h_list * (1 - 10 * tol)) ++outside;
+    if (i < n_checked && hh >= h_list * (1 - 10 * tol)) ++outside;
     Real dr;
     sums(hh, r, dr);
     h[i] = hh;
     rho[i] = r;
     omega[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)
-    h_max = std::max(h_max, hh);
+    if (i < n_checked) h_max = std::max(h_max, hh);
   }
   return {not_converged, outside, h_max};
+}
+
+template <int D, class K>
+DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, const Real* m, std::size_t n,
+                                Real eta, Real tol, Real h_list, Real* h, Real* rho, Real* omega) {
+  return solve_density<D, K>(ns, x, m, n, eta, tol, h_list, h, rho, omega, n);
 }
 
 }  // namespace sphark

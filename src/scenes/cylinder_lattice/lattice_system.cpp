@@ -63,15 +63,18 @@ Real LatticeSystem::min_ghost_h() const {
 }
 
 // seed 004 eq. (1) with h = eta (m/rho)^(1/D) (seed 000 eq. (5)), over real + ghost particles.
+// The list radius follows the real particles' h only: a ghost's own h is the accumulation
+// diagnostic, and a ghost isolated inside the obstacle has no finite root (its h stays at the
+// list limit, which only matters for the accumulation event's minimum, not at all).
 int LatticeSystem::solve_densities(std::size_t total) {
   Real h_guess = 0;
-  for (std::size_t i = 0; i < total; ++i) h_guess = std::max(h_guess, h_[i]);
+  for (std::size_t i = 0; i < n_; ++i) h_guess = std::max(h_guess, h_[i]);
   const Real r_cap = 0.999 * p_.half_box;  // the minimum image needs 2 r < box length
   Real r_build = std::min(1.1 * K::support * h_guess, r_cap);
   for (int attempt = 0; attempt < kMaxRetries; ++attempt) {
     search_.build(xall_.data(), total, r_build);
     const DensitySolveStats st = solve_density<2, K>(search_, xall_.data(), mass_.data(), total, p_.eta, p_.h_tol,
-                                                     r_build / K::support, h_.data(), rho_.data(), omega_.data());
+                                                     r_build / K::support, h_.data(), rho_.data(), omega_.data(), n_);
     if (st.not_converged > 0) {
       error_ = "h-rho solve did not converge for " + std::to_string(st.not_converged) + " particle(s)";
       return 1;
