@@ -225,10 +225,7 @@ int main(int argc, char** argv) {
     check_restart_text(parser, *restart, "scene", scene_text(s, name), "scene parameters");
     check_restart_t_end(parser, *restart, core.t_end);
   }
-  apply_thread_count(core.threads);
-  run_profile().enable(core.profile);
-  prepare_output_dir(core.out, parser.program());
-  install_stop_handlers();
+  start_run(core, parser.program());
   s.argv.assign(args.begin() + 1, args.end());
   s.restart = restart ? &*restart : nullptr;
 

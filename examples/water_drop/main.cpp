@@ -88,10 +88,7 @@ int main(int argc, char** argv) {
     check_restart_text(p, *restart, "scene", scene_text(c), "scene parameters");
     check_restart_t_end(p, *restart, base.core.t_end);
   }
-  apply_thread_count(base.core.threads);
-  run_profile().enable(base.core.profile);
-  prepare_output_dir(base.core.out, p.program());
-  install_stop_handlers();
+  start_run(base.core, p.program());
   base.argv.assign(args.begin() + 1, args.end());
   base.restart = restart ? &*restart : nullptr;
   std::vector<std::pair<std::string, DropRunSummary>> results;

@@ -1,5 +1,8 @@
 #include "sphark/run/restart.hpp"
 
+#include "sphark/core/profile.hpp"
+#include "sphark/run/signals.hpp"
+
 #include <charconv>
 #include <cstdio>
 #include <sstream>
@@ -117,6 +120,13 @@ void check_restart_t_end(const OptionParser& p, const Checkpoint& c, Real t_end)
   char why[128];
   std::snprintf(why, sizeof why, "%.9g is not after the checkpoint time %.9g", t_end, c.t);
   p.fail("--t-end", why);
+}
+
+void start_run(const CoreOptions& core, std::string_view program) {
+  apply_thread_count(core.threads);
+  run_profile().enable(core.profile);
+  prepare_output_dir(core.out, program);
+  install_stop_handlers();
 }
 
 }  // namespace sphark

@@ -4,6 +4,7 @@
 // `prog --restart out/checkpoint.bin --t-end 0.2` continues the same run further.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sphark/cli/options.hpp"
@@ -42,6 +43,10 @@ struct RunControlOptions {
 void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
 // After parsing: --output-every and --checkpoint-every must not exceed --t-end (p.fail, exit 2).
 void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core);
+// After the options (and any restart) are checked, before the first output: sets the thread
+// count, switches --profile on, creates the output directory (one line + exit 2 if it cannot be
+// written) and installs the SIGINT/SIGTERM stop handlers.
+void start_run(const CoreOptions& core, std::string_view program);
 
 // The checkpoint named by --restart (nullopt without the option), loaded before anything is
 // parsed or written. A missing value, an unreadable or corrupt file or one written by another
