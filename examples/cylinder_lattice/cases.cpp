@@ -198,6 +198,7 @@ std::string scene_text(const Settings& s, const std::string& map) {
   append_key_value(text, "v0", p.v0);
   append_key_value(text, "tau", p.tau);
   append_key_value(text, "sound_speed", p.sound_speed);
+  append_key_value(text, "background_pressure", p.background);
   append_key_value(text, "rho0", p.rho0);
   append_key_value(text, "eta", p.eta);
   append_key_value(text, "alpha", p.alpha);

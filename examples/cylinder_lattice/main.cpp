@@ -46,6 +46,9 @@ int main(int argc, char** argv) {
   op.add("--seeds", &s.seeds, "ensemble: seeds 1..N per map and v0", Range{1, 100000});
   op.add("--tau", &p.tau, "driving time tau of eq. (36); 0 switches the driving off", NonNegative{});
   op.add("--sound-speed", &p.sound_speed, "c_s of the Tait EOS", Positive{});
+  op.add("--background-pressure", &p.background,
+         "background pressure added to the Tait EOS, in units of c_s^2 rho0/7: P >= 0 for rho >= rho0 (1 - value)^(1/7); 0 = plain Tait",
+         NonNegative{});
   op.add("--rho0", &p.rho0, "reference density of the Tait EOS", Positive{});
   op.add("--eta", &p.eta, "h = eta (m/rho)^(1/2), support 2h (Wendland C4)", Range{0.8, 3.0});
   op.add("--alpha", &p.alpha, "Monaghan artificial viscosity", NonNegative{});

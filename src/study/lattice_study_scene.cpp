@@ -41,17 +41,16 @@ class LatticeProblem final : public StudyProblem {
   }
 
  private:
-  // Kinetic + Tait internal energy (integral of P/rho^2) of the real particles.
+  // Kinetic + internal energy (integral of P/rho^2, Tait + background pressure) of the real particles.
   Real physical_energy(const Real* y) {
     if (sys_.prepare(y) != 0) return std::numeric_limits<Real>::infinity();
     const LatticeParams& p = sys_.params();
-    const Real c2 = p.sound_speed * p.sound_speed, r0 = p.rho0;
     Real e = 0;
     for (std::size_t a = 0; a < sys_.particles(); ++a) {
       const Real* v = y + sys_.velocity_offset() + 2 * a;
       const Real r = sys_.density()[a];
       e += 0.5 * p.mass * (v[0] * v[0] + v[1] * v[1]);
-      e += p.mass * c2 * r0 / 7.0 * ((std::pow(r, 6) - std::pow(r0, 6)) / (6 * std::pow(r0, 7)) + 1 / r - 1 / r0);
+      e += p.mass * tait_specific_energy(r, p.rho0, p.sound_speed, background_pressure(p));
     }
     return e;
   }

@@ -4,9 +4,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include "lattice_helpers.hpp"
+#include "sphark/operators/tait_eos.hpp"
 #include "sphark/study/study_scene.hpp"
 
 namespace sphark {
@@ -161,6 +163,39 @@ TEST(LatticeStudyScene, BuildsAndIntegratesOneOutputInterval) {
   EXPECT_EQ(scene->time_error(y.data(), y.data()), 0);
   EXPECT_GT(scene->time_error(y.data(), problem->y0().data()), 0);  // driven from rest
   EXPECT_TRUE(std::isfinite(problem->energy(t, y.data())));
+}
+}  // namespace
+}  // namespace sphark
+
+namespace sphark {
+namespace {
+// The stability bisection's blow-up measure of the lattice scene (src/study/lattice_study_scene.cpp):
+// E_cap = M (2 v0)^2 / 2 while the physical energy (kinetic + internal) is below it, the physical
+// energy above, +inf for a state whose densities cannot be computed.
+TEST(LatticeStudyScene, BlowUpMeasureIsCappedBelowTwiceTheDrivingSpeedAndFollowsTheEnergyAbove) {
+  const auto scene = make_study_scene("lattice", {0, 0.05, 2});
+  auto problem = scene->build();
+  auto& sys = dynamic_cast<LatticeSystem&>(problem->system());
+  const LatticeParams& p = sys.params();
+  const Real M = p.mass * static_cast<Real>(sys.particles());
+  const Real e_cap = 0.5 * M * 4 * p.v0 * p.v0;
+  std::vector<Real> y = problem->y0();
+  EXPECT_EQ(problem->energy(0, y.data()), e_cap);  // at rest
+  for (Real speed : {1.5, 3.0}) {  // every particle at speed * v0 along x
+    for (std::size_t a = 0; a < sys.particles(); ++a) y[sys.velocity_offset() + 2 * a] = speed * p.v0;
+    ASSERT_EQ(sys.prepare(y.data()), 0);
+    Real internal = 0;
+    for (std::size_t a = 0; a < sys.particles(); ++a)
+      internal += p.mass * tait_specific_energy(sys.density()[a], p.rho0, p.sound_speed, background_pressure(p));
+    const Real physical = 0.5 * M * speed * speed * p.v0 * p.v0 + internal;
+    if (physical < e_cap)
+      EXPECT_EQ(problem->energy(0, y.data()), e_cap) << "speed " << speed;
+    else
+      EXPECT_NEAR(problem->energy(0, y.data()), physical, 1e-12 * physical) << "speed " << speed;
+  }
+  EXPECT_GT(0.5 * M * 9 * p.v0 * p.v0, e_cap);  // so the 3 v0 state is on the "follows" branch
+  y[sys.position_offset()] = std::numeric_limits<Real>::quiet_NaN();
+  EXPECT_EQ(problem->energy(0, y.data()), std::numeric_limits<Real>::infinity());
 }
 }  // namespace
 }  // namespace sphark

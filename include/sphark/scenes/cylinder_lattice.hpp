@@ -10,7 +10,10 @@
 //     density, h, Omega and pressure of its inner particle and its velocity mirrored (seed 004
 //     §1-2); its OWN support radius (eq. 1 solved at the ghost's position) is computed as well and
 //     drives the accumulation event.
-//   P = c_s^2 rho0 / 7 ((rho/rho0)^7 - 1)                               seed 000, eq. (26) (Tait)
+//   P = c_s^2 rho0 / 7 ((rho/rho0)^7 - 1) + P_b                         seed 000, eq. (26) (Tait) + background
+//     P_b = background * c_s^2 rho0 / 7 > 0, so that P >= 0 (a ghost never pulls a real particle
+//     towards and through the wall) for rho >= rho0 (1 - background)^(1/7): the default 0.15
+//     covers rho >= 0.977 rho0 (docs/cylinder_lattice.md, "Background pressure"); 1 covers every rho.
 //   dv_a/dt = - sum_b m [P_a/(Omega_a rho_a^2) grad W(h_a) + P_b/(Omega_b rho_b^2) grad W(h_b)]
 //             + Monaghan viscosity (h_ab, grad W averaged) + (v0 - v_x)/tau x   (grad-h form of seed 000 eq. (27); seed 004 eq. (36))
 //   dx_a/dt = v_a
@@ -36,6 +39,7 @@ struct LatticeParams {
   Real radius = 0.2;      // obstacle radius R (centre at the origin)
   Real rho0 = 1;          // reference density of the Tait EOS
   Real sound_speed = 5;   // c_s of the Tait EOS: 10 x the medium-resolution v0 = 0.5
+  Real background = 0.15; // background pressure P_b in units of c_s^2 rho0 / 7 (1: P >= 0 for every rho)
   Real mass = 0;          // particle mass (all equal, real and ghost)
   Real eta = 1.3;         // h = eta (m/rho)^(1/2); Wendland C4 support H = 2h
   Real alpha = 0.1;       // Monaghan artificial viscosity
@@ -48,6 +52,11 @@ struct LatticeParams {
   Real accumulation = 0.05;  // accumulation when a ghost's h < accumulation * h_ref ("H close to zero")
   Real h_tol = 1e-7;      // relative tolerance of the h-rho Newton solve
 };
+
+// P_b = background * c_s^2 rho0 / 7, added to the Tait pressure.
+inline Real background_pressure(const LatticeParams& p) {
+  return p.background * p.sound_speed * p.sound_speed * p.rho0 / 7;
+}
 
 // The uniform-lattice spacing of n particles in the fluid area (box minus disc).
 Real lattice_spacing(const LatticeParams& p, std::size_t n);

@@ -7,6 +7,7 @@
 #include "sphark/kernels/kernels.hpp"
 #include "sphark/operators/artificial_viscosity.hpp"
 #include "sphark/operators/density_summation.hpp"
+#include "sphark/integrate/callback_errors.hpp"
 #include "sphark/operators/tait_eos.hpp"
 #include "sphark/scenes/cylinder_lattice.hpp"
 
@@ -129,8 +130,9 @@ int LatticeSystem::prepare(const Real* y) noexcept {
         omega_[n_ + k] = omega_[src];
       }
       h_min_ = *std::min_element(h_.begin(), h_.begin() + n_);
+      const Real p_b = background_pressure(p_);
       for (std::size_t i = 0; i < total; ++i) {
-        pressure_[i] = tait_pressure(rho_[i], p_.rho0, p_.sound_speed);  // seed 000, eq. (26)
+        pressure_[i] = tait_pressure(rho_[i], p_.rho0, p_.sound_speed) + p_b;  // seed 000, eq. (26)
         q_[i] = pressure_[i] / (omega_[i] * rho_[i] * rho_[i]);
       }
       std::copy(x, x + 2 * n_, x_prepared_.begin());
@@ -139,11 +141,8 @@ int LatticeSystem::prepare(const Real* y) noexcept {
     }
     error_ = "ghost layer width did not settle";
     return 1;
-  } catch (const std::exception& e) {
-    error_ = std::string("LatticeSystem: ") + e.what();
-    return -1;
   } catch (...) {
-    error_ = "LatticeSystem: unknown exception";
+    error_ = current_exception_message("LatticeSystem");
     return -1;
   }
 }
@@ -191,12 +190,7 @@ int LatticeSystem::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
   }
   wall_force_ = Vec<2>(fx, fy);
   max_accel_ = std::sqrt(max_acc2);
-  for (std::size_t k = 0; k < layout_.size(); ++k)
-    if (!std::isfinite(ydot[k])) {
-      error_ = "non-finite right-hand side entry " + std::to_string(k);
-      return 1;
-    }
-  return 0;
+  return check_finite_rhs(ydot, layout_.size(), error_);
 }
 
 Real LatticeSystem::max_stable_dt(Real /*t*/, const Real* y) noexcept {

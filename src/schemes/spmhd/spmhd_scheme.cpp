@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sphark/core/profile.hpp"
+#include "sphark/integrate/callback_errors.hpp"
 
 namespace sphark {
 
@@ -196,8 +197,8 @@ int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
   try {
     if (const int rc = prepare(y); rc != 0) return rc;
     force_pass(y, ydot);
-  } catch (const std::exception& e) {
-    error_ = e.what();
+  } catch (...) {
+    error_ = current_exception_message("SpmhdScheme");
     return 1;
   }
   return 0;
@@ -216,8 +217,8 @@ template <int D, class K>
 int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexcept {
   try {
     if (const int rc = prepare(y); rc != 0) return rc;
-  } catch (const std::exception& e) {
-    error_ = e.what();
+  } catch (...) {
+    error_ = current_exception_message("SpmhdScheme");
     return 1;
   }
   std::fill(c, c + layout_.size(), 0.0);

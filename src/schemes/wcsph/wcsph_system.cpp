@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "sphark/core/profile.hpp"
+#include "sphark/integrate/callback_errors.hpp"
 #include "sphark/kernels/kernels.hpp"
 #include "sphark/operators/artificial_viscosity.hpp"
 #include "sphark/operators/conjugate_cleaning.hpp"
@@ -156,17 +157,9 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept 
       max_acc2 = std::max(max_acc2, acc.squaredNorm());
     }
     max_accel_ = std::sqrt(max_acc2);
-    for (std::size_t k = 0; k < layout_.size(); ++k)
-      if (!std::isfinite(ydot[k])) {
-        error_ = "non-finite right-hand side entry " + std::to_string(k);
-        return 1;
-      }
-    return 0;
-  } catch (const std::exception& e) {
-    error_ = std::string("WcsphSystem::rhs: ") + e.what();
-    return -1;
+    return check_finite_rhs(ydot, layout_.size(), error_);
   } catch (...) {
-    error_ = "WcsphSystem::rhs: unknown exception";
+    error_ = current_exception_message("WcsphSystem::rhs");
     return -1;
   }
 }
