@@ -35,12 +35,12 @@ double process_cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-// Particle fields of state y as CSV text (for the Fig. 9 interpolation in vis/cylinder_lattice.py).
-std::string fields_csv(const LatticeSystem& sys, const Real* y) {
+// Particle fields of state y as CSV text (for the Fig. 9 interpolation in vis/cylinder_lattice.py);
+// x = the positions wrapped into the box.
+std::string fields_csv(const LatticeSystem& sys, const Real* y, const std::vector<Real>& x) {
   std::ostringstream os;
   os.precision(10);
   os << "x,y,vx,vy,rho,h\n";
-  const Real* x = y + sys.position_offset();
   const Real* v = y + sys.velocity_offset();
   for (std::size_t a = 0; a < sys.particles(); ++a)
     os << x[2 * a] << ',' << x[2 * a + 1] << ',' << v[2 * a] << ',' << v[2 * a + 1] << ',' << sys.density()[a] << ','
@@ -106,6 +106,7 @@ RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std
   ResumableVtkSeries ghosts(dir, "ghosts");  // frame k of the ghosts goes with lattice_k
   if (s.restart) ghosts.restore(ghost_frames(s.restart->text("frames"), dir));
   Real sampled_g[2] = {1, 1};
+  std::vector<Real> wrapped(2 * cfg.particles);  // output positions, wrapped into the box
   TimeLoopHooks hooks;
   hooks.diagnostics = [&](Real t, const Real* yy, const StepperStats& st) {
     const int rc = sys.prepare(yy);  // density, h, ghosts of this state
@@ -132,11 +133,12 @@ RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std
       std::snprintf(name, sizeof name, "fields_%04ld.csv", static_cast<long>(k));
     else
       std::snprintf(name, sizeof name, "fields_end.csv");
-    write_file_atomically(dir / name, "# t=" + std::to_string(t) + "\n" + fields_csv(sys, yy));
+    lattice_box(p).wrap_all(yy + sys.position_offset(), sys.particles(), wrapped.data());
+    write_file_atomically(dir / name, "# t=" + std::to_string(t) + "\n" + fields_csv(sys, yy, wrapped));
     ParticleFrame f;
     f.dim = 2;
     f.count = sys.particles();
-    f.positions = yy + sys.position_offset();
+    f.positions = wrapped.data();
     f.arrays = {{"velocity", yy + sys.velocity_offset(), 2},
                 {"density", sys.density().data(), 1},
                 {"h", sys.smoothing_length().data(), 1},
@@ -234,6 +236,11 @@ int run_medium(const Settings& s) {
     std::vector<std::string> args{"fig9", s.core.out.string()};
     for (const auto& m : s.maps) args.push_back(m);
     if (!run_python("cylinder_lattice.py", args, false)) return 1;
+    for (const auto& m : s.maps)  // the VTK series' last frame: speed, v_y and pressure
+      run_python("render_particles.py",
+                 {(s.core.out / m / "lattice.pvd").string(), "--grid", "1x2", "--frame", "-1", "--arrays", "velocity",
+                  "pressure", "--out", (s.core.out / m / "final.png").string()},
+                 true);
   }
   return 0;
 }

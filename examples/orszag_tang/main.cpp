@@ -139,8 +139,8 @@ RunSummary run(const std::string& variant, const Settings& s) {
       const Real b2 = B[3 * a] * B[3 * a] + B[3 * a + 1] * B[3 * a + 1] + B[3 * a + 2] * B[3 * a + 2];
       pmag[a] = 0.5 * b2;
       err[a] = b2 > 0 ? scheme.h()[a] * std::abs(scheme.div_b()[a]) / std::sqrt(b2) : 0.0;
-      Eigen::Map<Vec<2>>(pos.data() + 2 * a) = box.wrap(Eigen::Map<const Vec<2>>(yy + 2 * a));
     }
+    box.wrap_all(yy, p.size(), pos.data());
     ParticleFrame f;
     f.dim = 2;
     f.count = p.size();

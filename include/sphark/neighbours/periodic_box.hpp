@@ -2,6 +2,7 @@
 // An axis-aligned box, periodic along the flagged axes (minimum-image convention).
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <optional>
 
 #include "sphark/core/types.hpp"
@@ -43,6 +44,13 @@ struct PeriodicBox {
       if (x[k] >= hi[k]) x[k] -= L;  // guards the round-off case x == hi
     }
     return x;
+  }
+
+  // n positions (D each, contiguous) wrapped into the box, into out[0 .. D n): for output, where
+  // a state keeps the unwrapped trajectory.
+  void wrap_all(const Real* x, std::size_t n, Real* out) const {
+    for (std::size_t a = 0; a < n; ++a)
+      Eigen::Map<Vec<D>>(out + D * a) = wrap(Eigen::Map<const Vec<D>>(x + D * a));
   }
 
   bool any_periodic() const {
