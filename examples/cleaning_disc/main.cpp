@@ -123,10 +123,7 @@ RunResult run(const Variant& v, const Settings& s, const ParticleSet2D& p) {
     ts.frames_basename = v.name;
     ts.frame_every = 20 * ts.sample_every;
   }
-  ts.checkpoint = core.out / (v.name + ".checkpoint.bin");
-  ts.checkpoint_every = s.run.checkpoint_every;
-  ts.restart = s.restart;
-  ts.inject_nan_at = s.run.inject_nan_at;
+  apply_run_control(ts, s.run, s.restart, core.out / (v.name + ".checkpoint.bin"));
   ts.progress_interval = 10;
 
   Real e0 = 0, e_last = 0;

@@ -97,10 +97,7 @@ RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std
   ts.frames_dir = dir;
   ts.frames_basename = "lattice";
   ts.frame_every = ts.sample_every;
-  ts.checkpoint = dir / "checkpoint.bin";
-  ts.checkpoint_every = s.control.checkpoint_every;
-  ts.restart = s.restart;
-  ts.inject_nan_at = s.control.inject_nan_at;
+  apply_run_control(ts, s.control, s.restart, dir / "checkpoint.bin");
   ts.progress_interval = 10;
 
   ResumableVtkSeries ghosts(dir, "ghosts");  // frame k of the ghosts goes with lattice_k

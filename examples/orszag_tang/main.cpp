@@ -118,10 +118,7 @@ RunSummary run(const std::string& variant, const Settings& s) {
   ts.frames_dir = dir;
   ts.frames_basename = "orszag_tang";
   ts.frame_every = ts.sample_every;
-  ts.checkpoint = dir / "checkpoint.bin";
-  ts.checkpoint_every = s.run.checkpoint_every;
-  ts.restart = s.restart;
-  ts.inject_nan_at = s.run.inject_nan_at;
+  apply_run_control(ts, s.run, s.restart, dir / "checkpoint.bin");
   ts.progress_interval = 10;
 
   std::vector<Real> pmag(p.size()), err(p.size()), pos(2 * p.size());

@@ -2,6 +2,7 @@
 
 #include "sphark/core/profile.hpp"
 #include "sphark/run/signals.hpp"
+#include "sphark/run/time_loop.hpp"
 
 #include <charconv>
 #include <cstdio>
@@ -67,6 +68,14 @@ void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& w
   p.add("--inject-nan-at", &o.inject_nan_at,
         "testing aid: the RHS turns non-finite from this time on (0 = never); exercises retry + clean failure",
         NonNegative{});
+}
+
+void apply_run_control(TimeLoopSettings& ts, const RunControlOptions& o, const Checkpoint* restart,
+                       const std::filesystem::path& checkpoint) {
+  ts.checkpoint = checkpoint;
+  ts.checkpoint_every = o.checkpoint_every;
+  ts.restart = restart;
+  ts.inject_nan_at = o.inject_nan_at;
 }
 
 void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core) {

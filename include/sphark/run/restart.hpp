@@ -2,6 +2,7 @@
 // Command-line plumbing of --restart FILE: a restarted run re-reads the options stored in the
 // checkpoint and applies the ones given now on top (the parser's "last occurrence wins"), so
 // `prog --restart out/checkpoint.bin --t-end 0.2` continues the same run further.
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -43,6 +44,11 @@ struct RunControlOptions {
 void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
 // After parsing: --output-every and --checkpoint-every must not exceed --t-end (p.fail, exit 2).
 void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core);
+struct TimeLoopSettings;
+// The run-control part of a time loop's settings: the checkpoint file and its interval, the
+// checkpoint to resume from (nullptr: none) and the NaN injection of --inject-nan-at.
+void apply_run_control(TimeLoopSettings& ts, const RunControlOptions& o, const Checkpoint* restart,
+                       const std::filesystem::path& checkpoint);
 // After the options (and any restart) are checked, before the first output: sets the thread
 // count, switches --profile on, creates the output directory (one line + exit 2 if it cannot be
 // written) and installs the SIGINT/SIGTERM stop handlers.
