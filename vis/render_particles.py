@@ -327,7 +327,9 @@ def main():
             px = (max(int((x1 - x0) * scale), 16), max(int((y1 - y0) * scale), 16))
             x1 = x0 + px[0] / scale  # exact world rectangle of the pixel grid
             y1 = y0 + px[1] / scale
-            ps = args.point_size * 2 if args.point_size else max(spacing * scale, 2.0)
+            # 2 median spacings: the squares overlap enough to close the gaps of a disordered set
+            # and of regions at half the median density
+            ps = args.point_size * 2 if args.point_size else max(2.0 * spacing * scale, 2.0)
             img = render_points(vtk, poly, a, comp, lo, hi, cmap, (x0, x1, y0, y1), px, ps, True)
             ax.imshow(img, extent=(x0, x1, y0, y1), origin="upper", interpolation="antialiased")
             ax.set_xlabel("x")
