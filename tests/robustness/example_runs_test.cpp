@@ -12,6 +12,7 @@
 #include <cstring>
 #include <thread>
 
+#include "interrupt_run.hpp"
 #include "run_example.hpp"
 #include "sphark/io/vtp_reader.hpp"
 #include "sphark/run/checkpoint.hpp"
@@ -112,19 +113,10 @@ TEST(ExampleRuns, SigintLeavesALoadableCheckpointThatRestartsBitForBit) {
   const Spawned s = spawn(bin, kTiny + kLeapfrog + std::vector<std::string>{"--out", run1.string(), "--t-end", "1",
                                                                              "--output-every", "0.01"},
                           dir.path());
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(run1 / "cleaned" / "drop_00000.vtp") && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  kill(s.pid, SIGINT);
-  const Finished f = wait_for(s);
-  EXPECT_EQ(f.exit_code, 128 + SIGINT) << f.err;
-  EXPECT_NE(f.err.find("stopped by signal 2"), std::string::npos) << f.err;
-  const Checkpoint c = load_checkpoint(run1 / "cleaned" / "checkpoint.bin");
-  ASSERT_GT(c.t, 0);
+  const Checkpoint c = interrupt_and_check(s, run1 / "cleaned" / "drop_00000.vtp", "stopped by signal 2",
+                                           run1 / "cleaned", 1, std::chrono::milliseconds(200));
+  ASSERT_GT(c.t, 0);  // the comparison below needs a mid-run checkpoint
   ASSERT_LT(c.t, 1);
-  for (const auto& e : fs::directory_iterator(run1 / "cleaned"))
-    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
   // continue a little past the checkpoint; an uninterrupted run to the same time agrees bit for bit
   char t_end[64];
   std::snprintf(t_end, sizeof t_end, "%.17g", (std::round(c.t / 1e-4) + 3) * 1e-4);

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "../support/temp_dir.hpp"
+#include "interrupt_run.hpp"
 #include "run_example.hpp"
 #include "sphark/run/checkpoint.hpp"
 #include "sphark/run/time_loop.hpp"
@@ -117,19 +118,9 @@ TEST(LatticeRuns, SigintLeavesALoadableCheckpointNamingTheMap) {
   const Spawned s = spawn(lattice_binary(), kSingle + Args{"--out", out.string(), "--t-end", "1000", "--output-every",
                                                            "0.5", "--v0", "0.05"},
                           dir.path());
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(out / "single_nonlinear" / "lattice_00001.vtp") && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  kill(s.pid, SIGINT);
-  const Finished f = wait_for(s);
-  EXPECT_EQ(f.exit_code, 128 + SIGINT) << f.err;
-  EXPECT_NE(f.err.find("nonlinear run stopped by signal 2"), std::string::npos) << f.err;
-  const Checkpoint c = load_checkpoint(out / "single_nonlinear" / "checkpoint.bin");
+  const Checkpoint c = interrupt_and_check(s, out / "single_nonlinear" / "lattice_00001.vtp",
+                                           "nonlinear run stopped by signal 2", out / "single_nonlinear", 1000);
   EXPECT_EQ(c.text("run"), "nonlinear");
-  EXPECT_GT(c.t, 0);
-  EXPECT_LT(c.t, 1000);
-  for (const auto& e : fs::directory_iterator(out / "single_nonlinear"))
-    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
   // and it continues
   const Finished r = run(lattice_binary(), {"--restart", (out / "single_nonlinear" / "checkpoint.bin").string(), "--t-end",
                                             std::to_string(c.t + 0.5)},

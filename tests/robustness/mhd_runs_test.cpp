@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "../support/temp_dir.hpp"
+#include "interrupt_run.hpp"
 #include "run_example.hpp"
 #include "sphark/io/vtp_reader.hpp"
 #include "sphark/run/checkpoint.hpp"
@@ -209,19 +210,9 @@ TEST(MhdRuns, SigintLeavesALoadableCheckpointNamingTheVariant) {
   const Spawned s = spawn(binary("orszag_tang"), kOrszagTang + Args{"--out", out.string(), "--t-end", "1000",
                                                                     "--output-every", "0.5"},
                           dir.path());
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(out / "cleaning" / "orszag_tang_00001.vtp") && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  kill(s.pid, SIGINT);
-  const Finished f = wait_for(s);
-  EXPECT_EQ(f.exit_code, 128 + SIGINT) << f.err;
-  EXPECT_NE(f.err.find("cleaning run stopped by signal 2"), std::string::npos) << f.err;
-  const Checkpoint c = load_checkpoint(out / "cleaning" / "checkpoint.bin");
+  const Checkpoint c = interrupt_and_check(s, out / "cleaning" / "orszag_tang_00001.vtp",
+                                           "cleaning run stopped by signal 2", out / "cleaning", 1000);
   EXPECT_EQ(c.text("run"), "cleaning");
-  EXPECT_GT(c.t, 0);
-  EXPECT_LT(c.t, 1000);
-  for (const auto& e : fs::directory_iterator(out / "cleaning"))
-    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
   expect_complete_files(out / "cleaning");
   // --variant must agree with the checkpoint's
   const Finished wrong = run(binary("orszag_tang"), {"--restart", (out / "cleaning" / "checkpoint.bin").string(),
