@@ -109,10 +109,14 @@ void Checkpoint::set_text(const std::string& name, std::string value) {
   texts.emplace_back(name, std::move(value));
 }
 
-std::vector<CheckpointField> describe_layout(const StateLayout& layout) {
-  std::vector<CheckpointField> f;
-  for (Field k : layout.fields()) f.push_back({std::string(field_name(k)), layout.components(k)});
-  return f;
+std::vector<CheckpointSpecies> describe_layout(const StateLayout& layout) {
+  std::vector<CheckpointSpecies> out;
+  for (const auto& b : layout.species()) {
+    CheckpointSpecies s{std::string(b.species.name()), b.count, {}};
+    for (const auto& f : b.fields) s.fields.push_back({std::string(f.field.name()), f.components});
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 std::string encode_checkpoint(const Checkpoint& c) {
@@ -123,11 +127,15 @@ std::string encode_checkpoint(const Checkpoint& c) {
   w.str(c.program);
   w.pod<std::uint64_t>(c.argv.size());
   for (const auto& a : c.argv) w.str(a);
-  w.pod<std::uint64_t>(c.particles);
-  w.pod<std::uint64_t>(c.fields.size());
-  for (const auto& f : c.fields) {
-    w.str(f.name);
-    w.pod<std::uint32_t>(static_cast<std::uint32_t>(f.components));
+  w.pod<std::uint64_t>(c.species.size());
+  for (const auto& sp : c.species) {
+    w.str(sp.name);
+    w.pod<std::uint64_t>(sp.particles);
+    w.pod<std::uint64_t>(sp.fields.size());
+    for (const auto& f : sp.fields) {
+      w.str(f.name);
+      w.pod<std::uint32_t>(static_cast<std::uint32_t>(f.components));
+    }
   }
   w.pod<double>(c.t);
   w.pod<double>(c.last_dt);
@@ -156,7 +164,7 @@ Checkpoint decode_checkpoint(const std::string& b) {
   Reader head(b, b.size());
   head.skip(sizeof kMagic);
   const auto version = head.pod<std::uint32_t>("version");
-  if (version != kCheckpointVersion)
+  if (version != kCheckpointVersion && version != 1)
     throw std::runtime_error("unsupported checkpoint version " + std::to_string(version) + " (this build reads " +
                              std::to_string(kCheckpointVersion) + ")");
   if (head.pod<std::uint32_t>("byte order") != kByteOrder)
@@ -171,12 +179,26 @@ Checkpoint decode_checkpoint(const std::string& b) {
   Checkpoint c;
   c.program = r.str("program");
   for (std::size_t i = 0, n = r.count("argv", 8); i < n; ++i) c.argv.push_back(r.str("argv"));
-  c.particles = r.pod<std::uint64_t>("particles");
-  for (std::size_t i = 0, n = r.count("fields", 12); i < n; ++i) {
-    CheckpointField f;
-    f.name = r.str("field name");
-    f.components = static_cast<int>(r.pod<std::uint32_t>("components"));
-    c.fields.push_back(std::move(f));
+  const auto read_fields = [&r](CheckpointSpecies& sp) {
+    for (std::size_t i = 0, n = r.count("fields", 12); i < n; ++i) {
+      CheckpointField f;
+      f.name = r.str("field name");
+      f.components = static_cast<int>(r.pod<std::uint32_t>("components"));
+      sp.fields.push_back(std::move(f));
+    }
+  };
+  if (version == 1) {  // one species, the gas
+    CheckpointSpecies sp{"gas", r.pod<std::uint64_t>("particles"), {}};
+    read_fields(sp);
+    c.species.push_back(std::move(sp));
+  } else {
+    for (std::size_t i = 0, n = r.count("species", 24); i < n; ++i) {
+      CheckpointSpecies sp;
+      sp.name = r.str("species name");
+      sp.particles = r.pod<std::uint64_t>("particles");
+      read_fields(sp);
+      c.species.push_back(std::move(sp));
+    }
   }
   c.t = r.pod<double>("t");
   c.last_dt = r.pod<double>("last dt");
@@ -194,7 +216,12 @@ Checkpoint decode_checkpoint(const std::string& b) {
   for (Real& v : c.stepper_data) v = r.pod<double>("stepper data");
   if (r.pos() != end) throw std::runtime_error("trailing bytes after the state");
   std::size_t expected = 0;
-  for (const auto& f : c.fields) expected += c.particles * static_cast<std::size_t>(f.components);
+  for (const auto& sp : c.species)
+    for (const auto& f : sp.fields) {
+      if (f.components <= 0 || sp.particles > c.y.size() / static_cast<std::size_t>(f.components))
+        throw std::runtime_error("corrupt layout (field " + f.name + ")");
+      expected += sp.particles * static_cast<std::size_t>(f.components);
+    }
   if (expected != c.y.size())
     throw std::runtime_error("state has " + std::to_string(c.y.size()) + " values, layout describes " +
                              std::to_string(expected));
@@ -220,15 +247,17 @@ Checkpoint load_checkpoint(const std::filesystem::path& path) {
 }
 
 std::optional<std::string> layout_mismatch(const Checkpoint& c, const StateLayout& layout) {
-  const auto fields = describe_layout(layout);
-  const auto text = [](std::size_t n, const std::vector<CheckpointField>& fs) {
+  const auto species = describe_layout(layout);
+  const auto text = [](const std::vector<CheckpointSpecies>& all) {
     std::ostringstream s;
-    s << n << " particles, fields";
-    for (const auto& f : fs) s << ' ' << f.name << '(' << f.components << ')';
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      s << (i ? "; " : "") << all[i].particles << ' ' << all[i].name << " particles, fields";
+      for (const auto& f : all[i].fields) s << ' ' << f.name << '(' << f.components << ')';
+    }
     return s.str();
   };
-  if (c.particles != layout.particles() || c.fields != fields || c.y.size() != layout.size())
-    return "checkpoint has " + text(c.particles, c.fields) + "; this run has " + text(layout.particles(), fields);
+  if (c.species != species || c.y.size() != layout.size())
+    return "checkpoint has " + text(c.species) + "; this run has " + text(species);
   return std::nullopt;
 }
 

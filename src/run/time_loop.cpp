@@ -118,8 +118,7 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     Checkpoint c;
     c.program = s.program;
     c.argv = s.argv;
-    c.particles = layout.particles();
-    c.fields = describe_layout(layout);
+    c.species = describe_layout(layout);
     c.t = time;
     c.last_dt = stepper->stats().last_dt > 0 ? stepper->stats().last_dt : opts.initial_dt;
     CountBase now;  // the counts so far: the restart's base

@@ -26,8 +26,7 @@ Checkpoint sample() {
   Checkpoint c;
   c.program = "water_drop";
   c.argv = {"--t-end", "0.1", "--out", "dir with space"};
-  c.particles = L.particles();
-  c.fields = describe_layout(L);
+  c.species = describe_layout(L);
   c.t = 0.1 + 1e-17;
   c.last_dt = 3.0e-7 / 7.0;
   c.set_scalar("sample", 42);
@@ -61,8 +60,7 @@ TEST(Checkpoint, RoundTripIsBitExact) {
   const Checkpoint r = load_checkpoint(dir.path() / "c.bin");
   EXPECT_EQ(r.program, c.program);
   EXPECT_EQ(r.argv, c.argv);
-  EXPECT_EQ(r.particles, c.particles);
-  EXPECT_EQ(r.fields, c.fields);
+  EXPECT_EQ(r.species, c.species);
   EXPECT_EQ(r.texts, c.texts);
   ASSERT_EQ(r.y.size(), c.y.size());
   ASSERT_EQ(r.stepper_data.size(), c.stepper_data.size());
@@ -116,8 +114,8 @@ TEST(Checkpoint, LayoutMismatchIsNamed) {
   more.add(Field::Position, 2).add(Field::Velocity, 2).add(Field::Density, 1);
   const auto why = layout_mismatch(c, more);
   ASSERT_TRUE(why.has_value());
-  EXPECT_NE(why->find("3 particles"), std::string::npos) << *why;
-  EXPECT_NE(why->find("4 particles"), std::string::npos) << *why;
+  EXPECT_NE(why->find("3 gas particles"), std::string::npos) << *why;
+  EXPECT_NE(why->find("4 gas particles"), std::string::npos) << *why;
   StateLayout psi(3);
   psi.add(Field::Position, 2).add(Field::Velocity, 2).add(Field::Density, 1).add(Field::Psi, 1);
   EXPECT_TRUE(layout_mismatch(c, psi).has_value());
@@ -127,4 +125,48 @@ TEST(Checkpoint, AtomicWriteKeepsThePreviousFileWhenTheDirectoryIsGone) {
   TempDir dir;
   EXPECT_THROW(save_checkpoint(dir.path() / "missing" / "c.bin", sample()), std::runtime_error);
   EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(Checkpoint, EverySpeciesRoundTrips) {
+  TempDir dir;
+  Checkpoint c = sample();
+  StateLayout L = layout3();
+  L.add_species(Species::Sink, 2).add(Field::Position, 2).add(Field::Mass, 1);
+  c.species = describe_layout(L);
+  c.y.resize(L.size(), 0.25);
+  save_checkpoint(dir.path() / "c.bin", c);
+  const Checkpoint r = load_checkpoint(dir.path() / "c.bin");
+  ASSERT_EQ(r.species.size(), 2u);
+  EXPECT_EQ(r.species[1].name, "sink");
+  EXPECT_EQ(r.species[1].particles, 2u);
+  EXPECT_EQ(r.species, c.species);
+  EXPECT_FALSE(layout_mismatch(r, L).has_value());
+  const auto why = layout_mismatch(r, L.with_count(Species::Sink, 3));
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("2 sink particles"), std::string::npos) << *why;
+}
+
+// A version-1 file (one species, written before species existed) still loads, as the gas.
+TEST(Checkpoint, VersionOneReadsAsOneGasSpecies) {
+  std::string b = "SPHARKCK";
+  const auto pod = [&b](auto v) { b.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  const auto str = [&](const std::string& s) { pod(std::uint64_t{s.size()}), b += s; };
+  pod(std::uint32_t{1}), pod(std::uint32_t{0x01020304u});
+  str("water_drop"), pod(std::uint64_t{0});
+  pod(std::uint64_t{3}), pod(std::uint64_t{1}), str("position"), pod(std::uint32_t{2});  // 3 particles, x only
+  pod(0.5), pod(1e-3), pod(std::uint64_t{0}), pod(std::uint64_t{0});
+  pod(std::uint64_t{6});
+  for (int k = 0; k < 6; ++k) pod(static_cast<double>(k));
+  pod(std::uint64_t{0});
+  std::uint64_t h = 1469598103934665603ull;
+  for (char ch : b) h = (h ^ static_cast<unsigned char>(ch)) * 1099511628211ull;
+  pod(h);
+  const Checkpoint c = decode_checkpoint(b);
+  ASSERT_EQ(c.species.size(), 1u);
+  EXPECT_EQ(c.species[0].name, "gas");
+  EXPECT_EQ(c.particles(), 3u);
+  StateLayout L(3);
+  L.add(Field::Position, 2);
+  EXPECT_FALSE(layout_mismatch(c, L).has_value());
+  EXPECT_EQ(c.y[5], 5.0);
 }

@@ -62,7 +62,7 @@ TEST(ExampleRuns, ForcedNanIsRetriedThenFailsCleanlyWithTheLastGoodState) {
   const VtpContents frame = read_vtp(out / "cleaned" / "drop_00002.vtp");
   ASSERT_TRUE(frame.time.has_value());
   EXPECT_EQ(*frame.time, c.t);
-  EXPECT_EQ(frame.count, c.particles);
+  EXPECT_EQ(frame.count, c.particles());
   // every file complete: no temporaries left
   for (const auto& e : fs::directory_iterator(out / "cleaned"))
     EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
@@ -94,7 +94,7 @@ TEST(ExampleRuns, RestartMatchesTheUninterruptedRun) {
       EXPECT_EQ(slurp(whole / "cleaned" / "drop.pvd"), slurp(second / "cleaned" / "drop.pvd"));
     } else {
       // positions: within rtol (1e-4) of the drop radius; densities: within rtol of rho0
-      const std::size_t n = a.particles;
+      const std::size_t n = a.particles();
       Real dx = 0, drho = 0;
       for (std::size_t k = 0; k < 2 * n; ++k) dx = std::max(dx, std::abs(a.y[k] - b.y[k]));
       for (std::size_t k = 4 * n; k < 5 * n; ++k) drho = std::max(drho, std::abs(a.y[k] - b.y[k]));

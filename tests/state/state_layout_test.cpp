@@ -5,6 +5,8 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
+#include <cmath>
+
 #include "sphark/state/state_layout.hpp"
 
 using namespace sphark;
@@ -58,4 +60,61 @@ TEST(StateLayout, NVectorRoundTripIsZeroCopy) {
   EXPECT_EQ(NV_Ith_S(v, static_cast<sunindextype>(L.offset(Field::Position) + 3 * 3 + 2)), -7.0);
   N_VDestroy(v);
   SUNContext_Free(&ctx);
+}
+
+TEST(StateLayout, SpeciesFollowEachOtherAndKeepTheirOwnFields) {
+  StateLayout L(4);
+  L.add(Field::Position, 3).add(Field::Velocity, 3);
+  L.add_species(Species::Sink, 2).add(Field::Position, 3).add(Field::Velocity, 3).add(Field::Mass, 1).add(Field::Spin, 3);
+  EXPECT_EQ(L.particles(), 4u);
+  EXPECT_EQ(L.particles(Species::Sink), 2u);
+  EXPECT_EQ(L.offset(Field::Velocity), 12u);
+  EXPECT_EQ(L.offset(Species::Sink, Field::Position), 24u);
+  EXPECT_EQ(L.offset(Species::Sink, Field::Mass), 36u);
+  EXPECT_EQ(L.offset(Species::Sink, Field::Spin), 38u);
+  EXPECT_EQ(L.size(), 44u);
+  EXPECT_FALSE(L.has(Field::Mass));  // the gas has no mass field
+  EXPECT_TRUE(L.has(Species::Sink, Field::Mass));
+  EXPECT_EQ(L.fields(Species::Sink).size(), 4u);
+  EXPECT_THROW(L.add_species(Species::Sink, 1), std::invalid_argument);
+  // a field added to the gas later moves the sinks behind it
+  L.add(Species::Gas, Field::Density, 1);
+  EXPECT_EQ(L.offset(Species::Sink, Field::Position), 28u);
+  EXPECT_EQ(L.size(), 48u);
+}
+
+TEST(StateLayout, AFieldOfTheScenesOwnNeedsNoEditHere) {
+  constexpr Field dust_fraction{"dust_fraction"};
+  StateLayout L(3);
+  L.add(Field::Position, 2).add(dust_fraction, 1);
+  EXPECT_EQ(L.offset(dust_fraction), 6u);
+  EXPECT_EQ(field_name(L.fields().back()), "dust_fraction");
+  EXPECT_TRUE(L.has(Field{"dust_fraction"}));  // identified by name
+}
+
+TEST(StateLayout, ResizeKeepsEverySurvivorBitForBitAndLeavesNewParticlesZero) {
+  StateLayout L(5);
+  L.add(Field::Position, 2).add(Field::Density, 1);
+  L.add_species(Species::Sink, 1).add(Field::Position, 2).add(Field::Mass, 1);
+  std::vector<Real> y(L.size());
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] = std::ldexp(1.0 + 1e-3 * static_cast<Real>(k), static_cast<int>(k) % 7) / 3.0;
+  // gas particles 1 and 3 are accreted: 3 survive, in the order 0, 2, 4
+  const StateLayout gas_shrunk = L.with_count(Species::Gas, 3);
+  const std::vector<Real> g = resize_species(L, y.data(), gas_shrunk, Species::Gas, {0, 2, 4});
+  ASSERT_EQ(g.size(), gas_shrunk.size());
+  const std::size_t kept[3] = {0, 2, 4};
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (int c = 0; c < 2; ++c) EXPECT_EQ(g[2 * i + c], y[2 * kept[i] + c]);
+    EXPECT_EQ(g[gas_shrunk.offset(Field::Density) + i], y[L.offset(Field::Density) + kept[i]]);
+  }
+  for (std::size_t k = 0; k < 3; ++k)  // the sink block, moved up but unchanged
+    EXPECT_EQ(g[gas_shrunk.offset(Species::Sink, Field::Position) + k], y[L.offset(Species::Sink, Field::Position) + k]);
+  // a second sink is created: the first keeps its values, the new one is zero
+  const StateLayout more = gas_shrunk.with_count(Species::Sink, 2);
+  const std::vector<Real> s = resize_species(gas_shrunk, g.data(), more, Species::Sink, {0});
+  EXPECT_EQ(s[more.offset(Species::Sink, Field::Mass)], g[gas_shrunk.offset(Species::Sink, Field::Mass)]);
+  EXPECT_EQ(s[more.offset(Species::Sink, Field::Mass) + 1], 0.0);
+  EXPECT_EQ(s[more.offset(Species::Sink, Field::Position) + 2], 0.0);
+  EXPECT_THROW(resize_species(L, y.data(), more, Species::Sink, {0}), std::invalid_argument);  // gas differs too
+  EXPECT_THROW(resize_species(L, y.data(), gas_shrunk, Species::Gas, {0, 2, 5}), std::invalid_argument);
 }

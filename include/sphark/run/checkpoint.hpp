@@ -5,7 +5,10 @@
 //   "SPHARKCK"  8-byte magic
 //   u32 version (kCheckpointVersion), u32 byte-order mark 0x01020304
 //   payload:  str program; u64 n, n x str argv (the options, as given)
-//             u64 particles; u64 n, n x (str field name, u32 components)   -- the layout
+//             u64 n, n x (str species, u64 particles,                      -- the layout
+//                         u64 k, k x (str field name, u32 components))
+//             (version 1, still read: u64 particles; u64 k, k x (str field name, u32 components)
+//              of the one species "gas")
 //             f64 t; f64 last_dt
 //             u64 n, n x (str name, f64 value)    -- named scalars of the run loop
 //             u64 n, n x (str name, str text)     -- named texts (e.g. the diagnostics so far)
@@ -27,7 +30,7 @@
 
 namespace sphark {
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 
 struct CheckpointField {
   std::string name;
@@ -35,11 +38,17 @@ struct CheckpointField {
   bool operator==(const CheckpointField&) const = default;
 };
 
-struct Checkpoint {
-  std::string program;
-  std::vector<std::string> argv;        // options of the run that wrote it (argv[1..])
+struct CheckpointSpecies {
+  std::string name;
   std::size_t particles = 0;
   std::vector<CheckpointField> fields;  // in state order
+  bool operator==(const CheckpointSpecies&) const = default;
+};
+
+struct Checkpoint {
+  std::string program;
+  std::vector<std::string> argv;          // options of the run that wrote it (argv[1..])
+  std::vector<CheckpointSpecies> species; // the layout, in state order
   Real t = 0;
   Real last_dt = 0;                     // last step taken (initial step of a restart)
   std::vector<std::pair<std::string, Real>> scalars;
@@ -47,6 +56,8 @@ struct Checkpoint {
   std::vector<Real> y;
   std::vector<Real> stepper_data;       // Stepper::resume_data() (leapfrog: bit-exact restart)
 
+  // Particles of the first species (0 without species).
+  std::size_t particles() const { return species.empty() ? 0 : species.front().particles; }
   // Named lookups; throw std::runtime_error naming the missing entry.
   Real scalar(const std::string& name) const;
   const std::string& text(const std::string& name) const;
@@ -54,8 +65,8 @@ struct Checkpoint {
   void set_text(const std::string& name, std::string value);
 };
 
-// Field names and component counts of a layout, in state order.
-std::vector<CheckpointField> describe_layout(const StateLayout& layout);
+// Species, particle counts, field names and component counts of a layout, in state order.
+std::vector<CheckpointSpecies> describe_layout(const StateLayout& layout);
 
 // The file image / its parse. decode throws std::runtime_error with one line saying what is
 // wrong (not a checkpoint, unsupported version, truncated, checksum mismatch, ...).
@@ -67,8 +78,8 @@ void save_checkpoint(const std::filesystem::path& path, const Checkpoint& c);
 // std::runtime_error "checkpoint '<path>': <reason>" for a missing, unreadable or corrupt file.
 Checkpoint load_checkpoint(const std::filesystem::path& path);
 
-// Why the checkpoint does not fit a run with this layout (particle count, fields, components,
-// state size), or nullopt if it fits.
+// Why the checkpoint does not fit a run with this layout (species, particle counts, fields,
+// components, state size), or nullopt if it fits.
 std::optional<std::string> layout_mismatch(const Checkpoint& c, const StateLayout& layout);
 
 }  // namespace sphark
