@@ -15,15 +15,15 @@ struct FrameBuffers {
   std::vector<Real> velocity, density, pressure, div_v, psi;
 };
 
-ParticleFrame make_frame(const WaterDrop& drop, const Real* y, FrameBuffers& buf) {
+ParticleFrame make_frame(WaterDrop& drop, Real t, const Real* y, FrameBuffers& buf) {
   const StateLayout& L = drop.model->layout();
   const std::size_t n = L.particles();
   const Real* v = y + L.offset(Field::Velocity);
   buf.velocity.assign(v, v + 2 * n);
   const Real* rho = y + L.offset(Field::Density);
   buf.density.assign(rho, rho + n);
-  buf.pressure = drop.model->pressure();
-  buf.div_v = drop.model->div_v();
+  buf.pressure = drop.model->pressure(t, y);
+  buf.div_v = drop.model->div_v(t, y);
   ParticleFrame f;
   f.dim = 2;
   f.count = n;
@@ -147,7 +147,7 @@ DropRunSummary run_water_drop(const DropRunSettings& s) {
                              static_cast<Real>(st.steps)};
   };
   // pressure and div_v of the frame: from diagnostics() at the same state, just before
-  hooks.frame = [&](Real, const Real* y) { return make_frame(drop, y, buf); };
+  hooks.frame = [&](Real t, const Real* y) { return make_frame(drop, t, y, buf); };
 
   sum.loop = run_time_loop(drop.model->system(), layout, stepper_options(s, drop), drop.y0, ts, hooks);
   const Real t = sum.loop.t_reached;

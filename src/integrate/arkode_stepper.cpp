@@ -22,6 +22,11 @@ std::string at_time(Real t) {
   return buf;
 }
 
+// The system's max_stable_dt failed (NaN): the run stops instead of taking an uncapped step.
+struct StableStepFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace
 
 // *GetReturnFlagName returns a malloc'ed string owned by the caller.
@@ -83,8 +88,13 @@ void ArkodeStepper::bound_step(Real t_out) {
   }
   step_cap_ = opts_.max_dt > 0 ? opts_.max_dt : std::numeric_limits<Real>::infinity();
   if (opts_.cap_by_stability) {
-    const Real stable = opts_.cfl_safety * system_.max_stable_dt(t_last_, y_last_.data());
-    if (stable > 0 && std::isfinite(stable)) step_cap_ = std::min(step_cap_, stable);
+    const Real stable = system_.max_stable_dt(t_last_, y_last_.data(), nullptr);
+    if (!(stable > 0)) {  // NaN (or a non-positive step): the system could not tell a stable step
+      std::string why = system_.last_error();
+      throw StableStepFailure("max_stable_dt failed at t=" + at_time(t_last_) + " (returned " + at_time(stable) + ")" +
+                              (why.empty() ? std::string() : ": " + why));
+    }
+    if (std::isfinite(stable)) step_cap_ = std::min(step_cap_, opts_.cfl_safety * stable);
   }
   check(api_.set_max_step(mem_, std::isfinite(step_cap_) ? step_cap_ : 0.0), "SetMaxStep");
 }
@@ -128,7 +138,15 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
   }
   auto yout = make_view(n, y, ctx_.get());
-  bound_step(t_out);
+  try {
+    bound_step(t_out);
+  } catch (const StableStepFailure& e) {
+    failed_ = true;
+    failure_ = e.what();
+    std::copy(y_last_.begin(), y_last_.end(), y);
+    t = t_last_;
+    return AdvanceStatus::Failed;
+  }
   for (int consecutive = 0;;) {
     last_code_ = 0;
     callback_error_.clear();

@@ -124,9 +124,13 @@ class LeapfrogStepper final : public Stepper {
 
   Real choose_dt() {
     if (opts_.fixed_dt > 0) return opts_.fixed_dt;
-    Real dt = opts_.cfl_safety * system_.max_stable_dt(t_, y_.data());
+    // the derivative at y_ that the next kick uses (FSAL: from the predictor of the last step)
+    Real dt = opts_.cfl_safety * system_.max_stable_dt(t_, y_.data(), dy_.data());
     if (opts_.max_dt > 0) dt = std::min(dt, opts_.max_dt);
-    if (!(dt > 0) || !std::isfinite(dt)) fail("no usable step size (cfl_safety * max_stable_dt = " + at_time(dt) + ")");
+    if (!(dt > 0) || !std::isfinite(dt)) {
+      const std::string why = system_.last_error();
+      fail("no usable step size (cfl_safety * max_stable_dt = " + at_time(dt) + ")" + (why.empty() ? "" : ": " + why));
+    }
     return dt;
   }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sphark/integrate/guarded_system.hpp"
 #include "steppers.hpp"
 
 namespace sphark {
@@ -51,8 +52,46 @@ void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, cons
   if (np == 0) bad("method", o.method, "the system declares no position block (position_size() == 0)");
   if (xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np))
     bad("method", o.method, "position/velocity blocks overlap or exceed the state size");
-  const bool bounded = o.fixed_dt > 0 || o.max_dt > 0 || std::isfinite(system.max_stable_dt(t0, y0));
+  const bool bounded = o.fixed_dt > 0 || o.max_dt > 0 || std::isfinite(system.max_stable_dt(t0, y0, nullptr));
   if (!bounded) bad("method", o.method, "needs fixed_dt, max_dt or a finite system max_stable_dt");
+}
+
+// A stepper together with the guard it integrates through (one guard per run, see
+// integrate/guarded_system.hpp): owns both, forwards everything to the inner stepper.
+class GuardedStepper final : public Stepper {
+ public:
+  GuardedStepper(std::unique_ptr<GuardedSystem> guard, std::unique_ptr<Stepper> inner)
+      : guard_(std::move(guard)), inner_(std::move(inner)) {}
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return inner_->advance(t_out, y, t); }
+  StepperStats stats() const override { return inner_->stats(); }
+  std::string failure_reason() const override { return inner_->failure_reason(); }
+  std::vector<Real> resume_data() const override { return inner_->resume_data(); }
+  std::vector<int> roots_found() const override { return inner_->roots_found(); }
+
+ private:
+  std::unique_ptr<GuardedSystem> guard_;  // outlives inner_ (declared first, destroyed last)
+  std::unique_ptr<Stepper> inner_;
+};
+
+std::unique_ptr<Stepper> make_unguarded_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                                const Real* y0) {
+  if (opts.method == "leapfrog" || opts.method == "leapfrog-rev") {
+    validate_leapfrog(system, opts, t0, y0);
+    return detail::make_leapfrog_stepper(system, opts, t0, y0);
+  }
+  if (opts.method == "ark-imex") {
+    if (!system.has_stiff_diagonal())
+      bad("method", opts.method, "the system has no stiff diagonal part (use an ERK table)");
+    if (!detail::is_imex_pair(opts.imex_table))
+      bad("imex_table", opts.imex_table,
+          "unknown ARK pair (ARK324L2SA, ARK436L2SA, ARK437L2SA, ARK548L2SA, ARK548L2SAb)");
+    return detail::make_imex_stepper(system, opts, t0, y0);
+  }
+  if (!is_erk(opts.method))
+    bad("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
+  if (opts.fixed_dt <= 0 && !erk_table_has_embedding(opts.method))
+    bad("method", opts.method, "table has no embedding: adaptive steps impossible, set fixed_dt");
+  return detail::make_erk_stepper(system, opts, t0, y0);
 }
 
 }  // namespace
@@ -84,23 +123,10 @@ bool erk_table_has_embedding(const std::string& name) {
 std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                       const Real* y0) {
   validate_common(system, opts);
-  if (opts.method == "leapfrog" || opts.method == "leapfrog-rev") {
-    validate_leapfrog(system, opts, t0, y0);
-    return detail::make_leapfrog_stepper(system, opts, t0, y0);
-  }
-  if (opts.method == "ark-imex") {
-    if (!system.has_stiff_diagonal())
-      bad("method", opts.method, "the system has no stiff diagonal part (use an ERK table)");
-    if (!detail::is_imex_pair(opts.imex_table))
-      bad("imex_table", opts.imex_table,
-          "unknown ARK pair (ARK324L2SA, ARK436L2SA, ARK437L2SA, ARK548L2SA, ARK548L2SAb)");
-    return detail::make_imex_stepper(system, opts, t0, y0);
-  }
-  if (!is_erk(opts.method))
-    bad("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
-  if (opts.fixed_dt <= 0 && !erk_table_has_embedding(opts.method))
-    bad("method", opts.method, "table has no embedding: adaptive steps impossible, set fixed_dt");
-  return detail::make_erk_stepper(system, opts, t0, y0);
+  auto guard = std::make_unique<GuardedSystem>(system);
+  guard->inject_nan_from(opts.inject_nan_from);
+  auto inner = make_unguarded_stepper(*guard, opts, t0, y0);
+  return std::make_unique<GuardedStepper>(std::move(guard), std::move(inner));
 }
 
 std::string describe(const StepperOptions& o) {

@@ -11,7 +11,6 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/progress.hpp"
-#include "sphark/run/guarded_system.hpp"
 #include "sphark/run/run_outputs.hpp"
 #include "sphark/run/signals.hpp"
 
@@ -69,8 +68,6 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
   TimeLoopResult res;
   res.program = s.program;
   res.run = s.run;
-  GuardedSystem sys(system, layout);
-  if (s.inject_nan_at > 0) sys.inject_nan_from(s.inject_nan_at);
   const Real t_end = snap_to_grid(s.t_end, s.sample_every);
   const Real frame_every = s.frame_every > 0 ? s.frame_every : t_end;
 
@@ -106,11 +103,12 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
   }
   // A blow-up ends the run instead of shrinking steps forever.
   if (opts.min_dt <= 0) {
-    const Real stable = system.max_stable_dt(t, y.data());
+    const Real stable = system.max_stable_dt(t, y.data(), nullptr);
     const Real scale = std::isfinite(stable) && stable > 0 ? std::min(stable, s.sample_every) : s.sample_every;
     opts.min_dt = s.min_dt_fraction * scale;
   }
-  auto stepper = make_stepper(sys, opts, t, y.data());
+  if (s.inject_nan_at > 0) opts.inject_nan_from = s.inject_nan_at;
+  auto stepper = make_stepper(system, opts, t, y.data());
   const auto stats = [&] { return base.total(stepper->stats()); };
 
   const auto save = [&](Real time) {

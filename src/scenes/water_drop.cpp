@@ -31,8 +31,8 @@ class WcsphModelOf final : public WcsphModel {
   OdeSystem& system() override { return sys_; }
   const StateLayout& layout() const override { return sys_.layout(); }
   WcsphDiagnostics<2> diagnostics(Real t, const Real* y) override { return sys_.diagnostics(t, y); }
-  const std::vector<Real>& pressure() const override { return sys_.pressure(); }
-  const std::vector<Real>& div_v() const override { return sys_.div_v(); }
+  const std::vector<Real>& pressure(Real t, const Real* y) override { return sys_.pressure(t, y); }
+  const std::vector<Real>& div_v(Real t, const Real* y) override { return sys_.div_v(t, y); }
   long neighbour_builds() const override { return sys_.neighbour_builds(); }
 
  private:

@@ -82,7 +82,7 @@ class DiscScene final : public StudyScene {
     probe.evaluate(0, y0.data());
     options_.fixed_ch = probe.cleaning_speed();  // frozen: E_c is then an invariant of sigma = 0
     probe_ = std::make_unique<SpmhdScheme<2>>(particles_.m, options_, std::nullopt, particles_.x);
-    cfl_unit_ = probe_->max_stable_dt(0, y0.data());
+    cfl_unit_ = probe_->max_stable_dt(0, y0.data(), nullptr);
     psi_offset_ = probe_->layout().offset(Field::Psi);
     b_offset_ = probe_->layout().offset(Field::MagneticField);
     e0_ = cleaning_energy(*probe_, y0.data());

@@ -39,7 +39,7 @@ class DropScene final : public StudyScene {
     WaterDrop drop = make_water_drop(config_);
     particles_ = drop.particles();
     pos_offset_ = drop.model->layout().offset(Field::Position);
-    cfl_unit_ = drop.model->system().max_stable_dt(0.0, drop.y0.data());
+    cfl_unit_ = drop.model->system().max_stable_dt(0.0, drop.y0.data(), nullptr);
     for (Real t : times_) exact_.push_back(drop.exact.at(t));
     exact_model_ = std::move(drop.exact);
   }

@@ -75,7 +75,7 @@ class LatticeScene final : public StudyScene {
     for (int k = 1; k <= outputs; ++k) times_.push_back(t_end_ * k / outputs);
     x0_ = initial_positions(cfg_);
     LatticeProblem probe(cfg_, x0_);
-    cfl_unit_ = probe.system().max_stable_dt(0, probe.y0().data());
+    cfl_unit_ = probe.system().max_stable_dt(0, probe.y0().data(), nullptr);
   }
   std::string name() const override { return "lattice"; }
   std::string description() const override {

@@ -65,7 +65,7 @@ class OrszagTangScene final : public StudyScene {
     probe_ = std::make_unique<SpmhdScheme<2>>(particles_.m, options_, unit_periodic_box());
     std::vector<Real> y0(probe_->size(), 0);
     orszag_tang_initial_state(*probe_, particles_, y0.data());
-    cfl_unit_ = probe_->max_stable_dt(0, y0.data());
+    cfl_unit_ = probe_->max_stable_dt(0, y0.data(), nullptr);
     ch0_ = probe_->cleaning_speed();
     pos_offset_ = probe_->layout().offset(Field::Position);
   }

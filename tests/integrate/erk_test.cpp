@@ -126,7 +126,7 @@ TEST(ErkStepper, StatsCountStepsAndRhsEvaluations) {
 // Adaptive runs never step beyond cfl_safety * max_stable_dt nor max_dt.
 TEST(ErkStepper, AdaptiveStepRespectsMaxStableDtAndMaxDt) {
   struct Cfl : Oscillator {
-    Real max_stable_dt(Real, const Real*) noexcept override { return 0.02; }
+    Real max_stable_dt(Real, const Real*, const Real*) noexcept override { return 0.02; }
   } sys;
   const Real y0[2] = {1, 0};
   StepperOptions o = options("ARKODE_DORMAND_PRINCE_7_4_5", 1e-3);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "test_systems.hpp"
 
@@ -116,4 +117,35 @@ TEST(Options, DescribeAndFormatStatsAreOneLine) {
 }
 
 }  // namespace
+}  // namespace sphark::test
+
+namespace sphark::test {
+namespace {
+// max_stable_dt fails (NaN, the documented failure value) from t = 0.5 on.
+struct FailingStableStep : Oscillator {
+  Real max_stable_dt(Real t, const Real*, const Real*) override {
+    return t < 0.5 ? 0.05 : std::numeric_limits<Real>::quiet_NaN();
+  }
+  std::string last_error() const override { return "no sound speed"; }
+};
+}  // namespace
+
+// A failing max_stable_dt stops the run (the step is never taken uncapped): adaptive ERK at the
+// start of the next output interval, the leapfrog at the next step; the reason names it.
+TEST(StableStepFailure, NaNStopsAdaptiveAndLeapfrogRuns) {
+  for (const char* method : {"ARKODE_DORMAND_PRINCE_7_4_5", "leapfrog"}) {
+    SCOPED_TRACE(method);
+    FailingStableStep sys;
+    const Real y0[2] = {1, 0};
+    auto stepper = make_stepper(sys, options(method, 1e-6), 0, y0);
+    Real y[2], t = 0;
+    AdvanceStatus st = AdvanceStatus::Reached;
+    for (int k = 1; k <= 10 && st == AdvanceStatus::Reached; ++k) st = stepper->advance(0.1 * k, y, t);
+    ASSERT_EQ(st, AdvanceStatus::Failed);
+    EXPECT_GE(t, 0.5 - 1e-12);
+    EXPECT_LT(t, 0.6);
+    EXPECT_TRUE(contains(stepper->failure_reason(), "max_stable_dt")) << stepper->failure_reason();
+    EXPECT_TRUE(contains(stepper->failure_reason(), "no sound speed")) << stepper->failure_reason();
+  }
+}
 }  // namespace sphark::test

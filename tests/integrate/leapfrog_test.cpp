@@ -77,7 +77,7 @@ TEST(Leapfrog, EnergyErrorBoundedOverThousandPeriods) {
 // Without fixed_dt the step follows cfl_safety * max_stable_dt, recomputed every step.
 class CflOscillator : public Oscillator {
  public:
-  Real max_stable_dt(Real, const Real* y) noexcept override { return 0.05 + 0.05 * std::abs(y[0]); }
+  Real max_stable_dt(Real, const Real* y, const Real*) noexcept override { return 0.05 + 0.05 * std::abs(y[0]); }
 };
 
 TEST(Leapfrog, StepFollowsMaxStableDt) {

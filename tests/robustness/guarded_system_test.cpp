@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "sphark/integrate/stepper.hpp"
-#include "sphark/run/guarded_system.hpp"
+#include "sphark/integrate/guarded_system.hpp"
 
 using namespace sphark;
 
@@ -17,6 +17,7 @@ class Oscillators final : public OdeSystem {
  public:
   explicit Oscillators(std::size_t n) : L(n) { L.add(Field::Position, 1).add(Field::Velocity, 1).add(Field::Density, 1); }
   std::size_t size() const override { return L.size(); }
+  const StateLayout* state_layout() const override { return &L; }
   int rhs(Real, const Real* y, Real* ydot) override {
     const std::size_t n = L.particles();
     for (std::size_t i = 0; i < n; ++i) {
@@ -49,16 +50,15 @@ struct Failure {
 
 Failure run_with_injection(const std::string& method, Real fixed_dt, Real inject_at) {
   Oscillators osc(4);
-  GuardedSystem sys(osc, osc.L);
-  sys.inject_nan_from(inject_at);
   StepperOptions o;
+  o.inject_nan_from = inject_at;
   o.method = method;
   o.rtol = 1e-10;
   o.atol = {1e-12};
   o.fixed_dt = fixed_dt;
   o.min_dt = 1e-9;
   std::vector<Real> y = osc.initial();
-  auto stepper = make_stepper(sys, o, 0.0, y.data());
+  auto stepper = make_stepper(osc, o, 0.0, y.data());  // the stepper guards the system
   Failure f;
   f.status = stepper->advance(1.0, y.data(), f.t);
   f.y = y;
@@ -91,7 +91,7 @@ TEST(GuardedSystem, InjectedNanIsRetriedThenFailsAtTheLastGoodState) {
 
 TEST(GuardedSystem, NamesNonFiniteDerivativesAndNonPhysicalStates) {
   Oscillators osc(12);
-  GuardedSystem sys(osc, osc.L);
+  GuardedSystem sys(osc);
   std::vector<Real> y = osc.initial(), ydot(y.size());
   EXPECT_EQ(sys.rhs(0, y.data(), ydot.data()), 0);
   osc.nan_force = std::numeric_limits<Real>::infinity();  // odd particles: 6 of them

@@ -109,7 +109,7 @@ TEST(SpmhdCleaning, OvercleaningKeepsEnergyConservationAndScalesTheSpeed) {
   EXPECT_NEAR(ed.rate, expected, 1e-14 * ed.scale);
   // The time step respects the overcleaned speed: C h_min / c_h (fixed particles: no v term).
   const Real hmin = *std::min_element(d.scheme.h().begin(), d.scheme.h().end());
-  EXPECT_DOUBLE_EQ(d.scheme.max_stable_dt(0, d.y.data()), d.scheme.options().courant * hmin / 4.0);
+  EXPECT_DOUBLE_EQ(d.scheme.max_stable_dt(0, d.y.data(), nullptr), d.scheme.options().courant * hmin / 4.0);
 }
 
 // Per-particle c_h,a = f |B_a|/sqrt(rho_a) (fixed particles: P = 0), the state holding psi/c_h

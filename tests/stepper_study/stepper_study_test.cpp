@@ -131,7 +131,7 @@ WaterDrop plain_drop() {
 StepperOptions fixed_cfl(const std::string& method, Real cfl, WaterDrop& drop) {
   StepperOptions o;
   o.method = method;
-  o.fixed_dt = cfl * drop.model->system().max_stable_dt(0, drop.y0.data());
+  o.fixed_dt = cfl * drop.model->system().max_stable_dt(0, drop.y0.data(), nullptr);
   return o;
 }
 

@@ -2,10 +2,19 @@
 // The contract between a physics scheme and every time stepper (ARKODE ERK, ARKODE IMEX,
 // leapfrog). A scheme sees only raw arrays laid out by its StateLayout; it never sees SUNDIALS.
 //
+// Every callback is a function of its arguments (t, y [, ydot]) alone: what a scheme derives
+// from y (neighbour lists, density, h, ghosts) it recomputes, or reuses only when it is provably
+// the same (e.g. memoised on the exact content of y). Nothing a callback returns depends on
+// which callback ran before.
+//
 // Return codes of rhs()/stiff_diagonal()/roots(): 0 success, > 0 recoverable (the stepper
-// retries with a smaller step), < 0 fatal. Implementations should catch their own exceptions
-// and return -1 with last_error() set; the steppers also catch anything that escapes (never
-// letting it cross into SUNDIALS) and report it as a fatal failure.
+// retries with a smaller step), < 0 fatal, with last_error() saying why. A callback may also
+// throw: the stepper catches every exception at the C boundary (the one net; nothing crosses
+// into SUNDIALS) and reports it as a fatal failure with its message.
+//
+// The stepper guards every call (integrate/guarded_system.hpp): a non-finite or non-physical
+// state y (density <= 0, internal energy < 0) and a non-finite derivative are recoverable
+// failures naming the particles concerned, so a scheme does not check them itself.
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -14,12 +23,17 @@
 
 namespace sphark {
 
+class StateLayout;
+
 class OdeSystem {
  public:
   virtual ~OdeSystem() = default;
 
   // Length of the state vector.
   virtual std::size_t size() const = 0;
+  // The layout of the state (species, fields), for the guard's checks and messages; nullptr for
+  // a plain ODE without particles (the guard then checks finiteness only).
+  virtual const StateLayout* state_layout() const { return nullptr; }
 
   // Full right-hand side ydot = f(t, y).
   virtual int rhs(Real t, const Real* y, Real* ydot) = 0;
@@ -36,9 +50,15 @@ class OdeSystem {
   virtual std::size_t velocity_offset() const { return 0; }
   virtual std::size_t position_size() const { return 0; }
 
-  // Largest stable step for the current state (CFL, force and any other criteria), used by the
-  // leapfrog stepper and as an upper bound hint. +inf when the system has no such limit.
-  virtual Real max_stable_dt(Real /*t*/, const Real* /*y*/) { return std::numeric_limits<Real>::infinity(); }
+  // Largest stable step at (t, y) (CFL, force and any other criteria), used by the leapfrog for
+  // its step and by adaptive runs as a cap. ydot, when not null, is f(t, y) or the stepper's
+  // approximation of it (the leapfrog passes the derivative its next kick uses); with null the
+  // system derives what it needs from y itself. Returns a positive step, +inf when the system
+  // has no such limit, or NaN on failure (last_error() says why): the stepper then stops with
+  // that failure instead of taking an uncapped step.
+  virtual Real max_stable_dt(Real /*t*/, const Real* /*y*/, const Real* /*ydot*/) {
+    return std::numeric_limits<Real>::infinity();
+  }
 
   // Event (root) functions g_k(t, y); a sign change stops the integration at the root.
   virtual int num_roots() const { return 0; }

@@ -1,5 +1,6 @@
 #pragma once
 // Options and statistics shared by every time stepper (ARKODE ERK, ARKODE IMEX, leapfrog).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct StepperOptions {
   Real min_dt = 0;
   // Restart: Stepper::resume_data() of the run being continued (see stepper.hpp); empty = none.
   std::vector<Real> resume_data;
+  // Testing aid of the blow-up path: from this time on the guard (integrate/guarded_system.hpp)
+  // makes every derivative non-finite. +inf: never.
+  Real inject_nan_from = std::numeric_limits<Real>::infinity();
   // Internal steps allowed per advance() call (ARKODE's default is 500).
   long max_steps = 1000000;
   // ARK IMEX pair of ARKODE 6.4.1: ARK324L2SA (order 3), ARK436L2SA (4), ARK437L2SA (4),

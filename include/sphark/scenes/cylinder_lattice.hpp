@@ -72,17 +72,22 @@ class LatticeSystem final : public OdeSystem {
   std::size_t particles() const { return n_; }
 
   std::size_t size() const override { return layout_.size(); }
-  int rhs(Real t, const Real* y, Real* ydot) noexcept override;
+  const StateLayout* state_layout() const override { return &layout_; }
+  int rhs(Real t, const Real* y, Real* ydot) override;
   std::size_t position_offset() const override { return layout_.offset(Field::Position); }
   std::size_t velocity_offset() const override { return layout_.offset(Field::Velocity); }
   std::size_t position_size() const override { return layout_.field_size(Field::Position); }
-  Real max_stable_dt(Real t, const Real* y) noexcept override;
+  // CFL and force criteria at y (force: ydot's accelerations, or f(t, y) when ydot is null).
+  Real max_stable_dt(Real t, const Real* y, const Real* ydot) override;
   int num_roots() const override { return 2; }
-  int roots(Real t, const Real* y, Real* g) noexcept override;
+  int roots(Real t, const Real* y, Real* g) override;
   std::string last_error() const override { return error_; }
 
   // Ghosts, densities and h of state y (what rhs() does before the forces); 0 ok, else error.
-  int prepare(const Real* y) noexcept;
+  int prepare(const Real* y);
+  // prepare(y) unless the positions of y are those of the last prepare (h, rho, ghost
+  // positions depend on the positions alone).
+  int prepare_if_moved(const Real* y);
 
   // After rhs()/prepare(): per particle (real first, then ghosts: their source's values) density,
   // h, pressure; min_ghost_h(): the smallest OWN support radius / 2 of a ghost.
@@ -99,6 +104,7 @@ class LatticeSystem final : public OdeSystem {
 
  private:
   int solve_densities(std::size_t total);
+  Real max_acceleration(Real t, const Real* y, const Real* ydot);
 
   LatticeParams p_;
   std::size_t n_;
@@ -110,6 +116,7 @@ class LatticeSystem final : public OdeSystem {
   std::vector<Real> xall_, vall_, mass_, rho_, h_, omega_, pressure_, q_;
   std::vector<Real> ghost_h_;     // each ghost's own h from eq. (1) at its position (accumulation)
   std::vector<Real> x_prepared_;  // positions of the last prepare()
+  std::vector<Real> evaluated_y_, scratch_;  // the state of the last rhs(); its derivative buffer
   bool prepared_ = false;
   Real width_ = 0, max_accel_ = 0, h_min_ = 0;
   Vec<2> wall_force_ = Vec<2>::Zero();

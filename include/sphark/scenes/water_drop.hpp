@@ -49,8 +49,8 @@ class WcsphModel {
   virtual OdeSystem& system() = 0;
   virtual const StateLayout& layout() const = 0;
   virtual WcsphDiagnostics<2> diagnostics(Real t, const Real* y) = 0;
-  virtual const std::vector<Real>& pressure() const = 0;
-  virtual const std::vector<Real>& div_v() const = 0;
+  virtual const std::vector<Real>& pressure(Real t, const Real* y) = 0;
+  virtual const std::vector<Real>& div_v(Real t, const Real* y) = 0;
   virtual long neighbour_builds() const = 0;
 };
 

@@ -12,7 +12,6 @@
 #endif
 
 #include "sphark/boundaries/wall_relaxation.hpp"
-#include "sphark/run/guarded_system.hpp"
 #include "sphark/run/signals.hpp"
 #include "sphark/scenes/cylinder_lattice_run.hpp"
 
@@ -104,7 +103,6 @@ LatticeRunResult run_lattice(const LatticeRunConfig& cfg, Real output_every, con
     std::vector<Real> y(sys.size(), 0.0);  // at rest
     const std::vector<Real> x0 = initial_positions(cfg);
     std::copy(x0.begin(), x0.end(), y.begin() + static_cast<std::ptrdiff_t>(sys.position_offset()));
-    GuardedSystem guarded(sys, sys.layout());
     // Events already present at t = 0 (no sign change for the stepper to see).
     Real g[2];
     if (sys.roots(0, y.data(), g) != 0) {
@@ -116,7 +114,7 @@ LatticeRunResult run_lattice(const LatticeRunConfig& cfg, Real output_every, con
     }
     if (observe) observe(0, sys, y.data());
     if (res.reason.empty()) {
-      auto stepper = make_stepper(guarded, cfg.stepper, 0, y.data());
+      auto stepper = make_stepper(sys, cfg.stepper, 0, y.data());
       Real t = 0;
       const Real every = output_every > 0 ? output_every : cfg.t_end;
       for (int k = 1; res.reason.empty(); ++k) {

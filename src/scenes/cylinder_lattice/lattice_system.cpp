@@ -2,12 +2,12 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <stdexcept>
 
 #include "sphark/kernels/kernels.hpp"
 #include "sphark/operators/artificial_viscosity.hpp"
 #include "sphark/operators/density_summation.hpp"
-#include "sphark/integrate/callback_errors.hpp"
 #include "sphark/operators/tait_eos.hpp"
 #include "sphark/scenes/cylinder_lattice.hpp"
 
@@ -15,6 +15,7 @@ namespace sphark {
 
 namespace {
 using K = WendlandC4<2>;
+constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
 constexpr int kMaxRetries = 4;
 }  // namespace
 
@@ -91,15 +92,11 @@ int LatticeSystem::solve_densities(std::size_t total) {
   return 1;
 }
 
-int LatticeSystem::prepare(const Real* y) noexcept {
-  try {
+// The state is finite (the stepper's guard checks it before every call).
+int LatticeSystem::prepare(const Real* y) {
+  {
     const Real* x = y + layout_.offset(Field::Position);
     const Real* v = y + layout_.offset(Field::Velocity);
-    for (std::size_t k = 0; k < layout_.size(); ++k)
-      if (!std::isfinite(y[k])) {
-        error_ = "non-finite state entry " + std::to_string(k);
-        return 1;
-      }
     for (int attempt = 0; attempt < kMaxRetries; ++attempt) {
       ghosts_.clear();
       // seed 004 §2: ghosts of every particle within the layer, at Psi0(s) (mirror, eq. 15) or
@@ -141,14 +138,18 @@ int LatticeSystem::prepare(const Real* y) noexcept {
     }
     error_ = "ghost layer width did not settle";
     return 1;
-  } catch (...) {
-    error_ = current_exception_message("LatticeSystem");
-    return -1;
   }
 }
 
-int LatticeSystem::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
+int LatticeSystem::prepare_if_moved(const Real* y) {
+  const Real* x = y + layout_.offset(Field::Position);
+  if (prepared_ && std::memcmp(x, x_prepared_.data(), 2 * n_ * sizeof(Real)) == 0) return 0;
+  return prepare(y);
+}
+
+int LatticeSystem::rhs(Real /*t*/, const Real* y, Real* ydot) {
   ++rhs_calls_;
+  evaluated_y_.clear();
   if (int bad = prepare(y)) return bad;
   const NeighbourList& nl = search_.list();
   const Real m = p_.mass;
@@ -190,11 +191,28 @@ int LatticeSystem::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
   }
   wall_force_ = Vec<2>(fx, fy);
   max_accel_ = std::sqrt(max_acc2);
-  return check_finite_rhs(ydot, layout_.size(), error_);
+  evaluated_y_.assign(y, y + layout_.size());
+  return 0;
 }
 
-Real LatticeSystem::max_stable_dt(Real /*t*/, const Real* y) noexcept {
-  if (!prepared_ && prepare(y) != 0) return kInfinity;
+// max_a |dv_a/dt| of ydot, or of f(t, y) (evaluated unless y is the last state evaluated).
+Real LatticeSystem::max_acceleration(Real t, const Real* y, const Real* ydot) {
+  if (!ydot) {
+    if (evaluated_y_.size() != layout_.size() || !std::equal(y, y + layout_.size(), evaluated_y_.begin())) {
+      scratch_.resize(layout_.size());
+      if (rhs(t, y, scratch_.data()) != 0) return kNaN;
+    }
+    return max_accel_;
+  }
+  const Real* dv = ydot + layout_.offset(Field::Velocity);
+  Real max_acc2 = 0;
+  for (std::size_t a = 0; a < n_; ++a) max_acc2 = std::max(max_acc2, Vec<2>(dv[2 * a], dv[2 * a + 1]).squaredNorm());
+  return std::sqrt(max_acc2);
+}
+
+Real LatticeSystem::max_stable_dt(Real t, const Real* y, const Real* ydot) {
+  const Real accel = max_acceleration(t, y, ydot);  // (before the prepare of y: rhs() prepares too)
+  if (std::isnan(accel) || prepare_if_moved(y) != 0) return kNaN;
   const Real* v = y + layout_.offset(Field::Velocity);
   Real vmax2 = 0, rho_max = 0;
   for (std::size_t a = 0; a < n_; ++a) vmax2 = std::max(vmax2, v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
@@ -202,11 +220,11 @@ Real LatticeSystem::max_stable_dt(Real /*t*/, const Real* y) noexcept {
   const Real c = tait_sound_speed(rho_max, p_.rho0, p_.sound_speed);
   // Courant condition with the viscous signal speed (Monaghan 1992) and the force condition.
   Real dt = p_.cfl * h_min_ / (c + std::sqrt(vmax2) + 1.2 * p_.alpha * c);
-  if (max_accel_ > 0) dt = std::min(dt, p_.cfl * std::sqrt(h_min_ / max_accel_));
+  if (accel > 0) dt = std::min(dt, p_.cfl * std::sqrt(h_min_ / accel));
   return dt;
 }
 
-int LatticeSystem::roots(Real /*t*/, const Real* y, Real* g) noexcept {
+int LatticeSystem::roots(Real /*t*/, const Real* y, Real* g) {
   const Real* x = y + layout_.offset(Field::Position);
   Real gap = kInfinity;  // penetration: min_a |x_a - c| - R
   for (std::size_t a = 0; a < n_; ++a)
@@ -214,9 +232,7 @@ int LatticeSystem::roots(Real /*t*/, const Real* y, Real* g) noexcept {
   g[0] = gap;
   g[1] = 1;
   if (!(p_.h_ref > 0)) return 0;
-  const bool same = prepared_ && std::memcmp(x, x_prepared_.data(), 2 * n_ * sizeof(Real)) == 0;
-  if (!same)
-    if (int bad = prepare(y)) return bad < 0 ? bad : -1;
+  if (int bad = prepare_if_moved(y)) return bad < 0 ? bad : -1;
   const Real hg = ghosts_.size() > 0 ? min_ghost_h() : p_.h_ref;
   g[1] = hg / p_.h_ref - p_.accumulation;
   return 0;

@@ -229,7 +229,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexce
 }
 
 template <int D, class K>
-Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
+Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y, const Real* /*ydot*/) noexcept {
   try {
     if (prepare(y) != 0) return 0;
   } catch (const std::exception&) {

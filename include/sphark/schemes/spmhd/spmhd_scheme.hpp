@@ -44,13 +44,14 @@ class SpmhdScheme final : public OdeSystem {
   const std::vector<Real>& masses() const { return m_; }
 
   std::size_t size() const override { return layout_.size(); }
+  const StateLayout* state_layout() const override { return &layout_; }
   int rhs(Real t, const Real* y, Real* ydot) noexcept override;
   bool has_stiff_diagonal() const override { return opt_.cleaning != Cleaning::None && opt_.sigma > 0; }
   int stiff_diagonal(Real t, const Real* y, Real* c) noexcept override;
   std::size_t position_offset() const override;
   std::size_t velocity_offset() const override;
   std::size_t position_size() const override { return opt_.evolve_particles ? D * n_ : 0; }
-  Real max_stable_dt(Real t, const Real* y) noexcept override;
+  Real max_stable_dt(Real t, const Real* y, const Real* ydot) noexcept override;
   std::string last_error() const override { return error_; }
 
   // Number of RHS evaluations so far.

@@ -41,20 +41,24 @@ class WcsphSystem final : public OdeSystem {
 
   // OdeSystem
   std::size_t size() const override { return layout_.size(); }
-  int rhs(Real t, const Real* y, Real* ydot) noexcept override;
+  const StateLayout* state_layout() const override { return &layout_; }
+  int rhs(Real t, const Real* y, Real* ydot) override;
   bool has_stiff_diagonal() const override { return p_.cleaning && p_.clean_sigma > 0; }
-  int stiff_diagonal(Real t, const Real* y, Real* c) noexcept override;
+  int stiff_diagonal(Real t, const Real* y, Real* c) override;
   std::size_t position_offset() const override { return layout_.offset(Field::Position); }
   std::size_t velocity_offset() const override { return layout_.offset(Field::Velocity); }
   std::size_t position_size() const override { return layout_.field_size(Field::Position); }
-  Real max_stable_dt(Real t, const Real* y) noexcept override;
+  // CFL and force criteria at y; the force criterion uses ydot's accelerations, or evaluates the
+  // RHS at y when ydot is null (memoised: no evaluation when y is the last state evaluated).
+  Real max_stable_dt(Real t, const Real* y, const Real* ydot) override;
   std::string last_error() const override { return error_; }
 
-  // Fields derived during the last rhs() call (valid after it): pressure, div v (eq. (36)).
-  const std::vector<Real>& pressure() const { return pressure_; }
-  const std::vector<Real>& div_v() const { return div_v_; }
+  // Pressure and div v (eq. (36)) of state y: evaluates the RHS at y unless y is the state of the
+  // last evaluation (bit for bit); the references stay valid until the next evaluation.
+  const std::vector<Real>& pressure(Real t, const Real* y) { return evaluate(t, y), pressure_; }
+  const std::vector<Real>& div_v(Real t, const Real* y) { return evaluate(t, y), div_v_; }
 
-  // Energies, momentum and errors of state y (evaluates the RHS once for div v).
+  // Energies, momentum and errors of state y.
   WcsphDiagnostics<D> diagnostics(Real t, const Real* y);
 
   long neighbour_builds() const { return builds_; }
@@ -62,7 +66,9 @@ class WcsphSystem final : public OdeSystem {
 
  private:
   void update_neighbours(const Real* x);
-  int check_state(const Real* y);
+  // rhs() at y into scratch_ unless y is evaluated_y_ (then nothing: every derived array is y's).
+  void evaluate(Real t, const Real* y);
+  Real max_acceleration(const Real* ydot) const;
 
   WcsphParams<D> p_;
   StateLayout layout_;
@@ -73,7 +79,8 @@ class WcsphSystem final : public OdeSystem {
 
   std::vector<Real> pressure_, p_over_rho2_, q_psi_, div_v_;
   std::vector<Vec<D>> grad_rho_;
-  Real max_accel_ = 0;
+  std::vector<Real> evaluated_y_, scratch_;  // the state of the last rhs(); its derivative buffer
+  Real max_accel_ = 0;                       // max |dv/dt| of the last rhs()
   std::string error_;
 };
 

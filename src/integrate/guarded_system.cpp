@@ -1,0 +1,105 @@
+#include "sphark/integrate/guarded_system.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace sphark {
+
+namespace {
+// The particles (ascending, unique) of `entries` inside one field's block.
+std::vector<std::size_t> particles_in(const StateLayout::FieldSlot& f, std::size_t count,
+                                      const std::vector<std::size_t>& entries) {
+  const std::size_t end = f.offset + count * static_cast<std::size_t>(f.components);
+  std::vector<std::size_t> particles;
+  for (std::size_t k : entries)
+    if (k >= f.offset && k < end) {
+      const std::size_t p = (k - f.offset) / static_cast<std::size_t>(f.components);
+      if (particles.empty() || particles.back() != p) particles.push_back(p);
+    }
+  return particles;
+}
+}  // namespace
+
+std::string describe_entries(const StateLayout& layout, const std::vector<std::size_t>& entries,
+                             std::size_t max_named) {
+  std::string out;
+  for (std::size_t s = 0; s < layout.species().size(); ++s) {
+    const auto& block = layout.species()[s];
+    for (const auto& f : block.fields) {
+      const std::vector<std::size_t> particles = particles_in(f, block.count, entries);
+      if (particles.empty()) continue;
+      if (!out.empty()) out += "; ";
+      if (s > 0) out += std::string(block.species.name()) + " ";
+      out += std::string(f.field.name()) + " of particle" + (particles.size() > 1 ? "s " : " ");
+      for (std::size_t i = 0; i < particles.size() && i < max_named; ++i) {
+        if (i) out += ", ";
+        out += std::to_string(particles[i]);
+      }
+      if (particles.size() > max_named) out += " (+" + std::to_string(particles.size() - max_named) + " more)";
+    }
+  }
+  return out;
+}
+
+std::vector<std::size_t> nonphysical_entries(const StateLayout& layout, const Real* y) {
+  std::vector<std::size_t> bad;
+  for (const auto& block : layout.species())
+    for (const auto& f : block.fields) {
+      const std::size_t end = f.offset + block.count * static_cast<std::size_t>(f.components);
+      const bool density = f.field == Field::Density, energy = f.field == Field::InternalEnergy;
+      for (std::size_t k = f.offset; k < end; ++k)
+        if (!std::isfinite(y[k]) || (density && !(y[k] > 0)) || (energy && y[k] < 0)) bad.push_back(k);
+    }
+  return bad;
+}
+
+int GuardedSystem::fail(Real t, const std::string& what, const std::vector<std::size_t>& entries) {
+  char at[64];
+  std::snprintf(at, sizeof at, " at t=%.9g: ", t);
+  own_error_ = true;
+  const StateLayout* layout = inner_.state_layout();
+  std::string where;
+  if (layout) {
+    where = describe_entries(*layout, entries);
+  } else {
+    where = "entr" + std::string(entries.size() > 1 ? "ies " : "y ") + std::to_string(entries.front());
+    if (entries.size() > 1) where += " (+" + std::to_string(entries.size() - 1) + " more)";
+  }
+  error_ = what + at + where;
+  ++failures_;
+  return 1;
+}
+
+int GuardedSystem::check(Real t, const Real* out, std::size_t n, const char* what) {
+  std::vector<std::size_t> bad;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!std::isfinite(out[k])) bad.push_back(k);
+  return bad.empty() ? 0 : fail(t, std::string("non-finite ") + what, bad);
+}
+
+int GuardedSystem::rhs(Real t, const Real* y, Real* ydot) {
+  own_error_ = false;
+  const StateLayout* layout = inner_.state_layout();
+  if (layout) {
+    if (const std::vector<std::size_t> bad = nonphysical_entries(*layout, y); !bad.empty())
+      return fail(t, "non-finite or non-physical state", bad);
+  } else if (const int r = check(t, y, size(), "state")) {
+    return r;
+  }
+  const int r = inner_.rhs(t, y, ydot);
+  if (r != 0) return r;
+  if (t >= inject_from_)  // particle 0's velocity derivative (or the first state entry)
+    ydot[layout && layout->has(Field::Velocity) ? layout->offset(Field::Velocity) : 0] =
+        std::numeric_limits<Real>::quiet_NaN();
+  return check(t, ydot, size(), "time derivative");
+}
+
+int GuardedSystem::stiff_diagonal(Real t, const Real* y, Real* c) {
+  own_error_ = false;
+  const int r = inner_.stiff_diagonal(t, y, c);
+  if (r != 0) return r;
+  return check(t, c, size(), "stiff diagonal");
+}
+
+}  // namespace sphark
