@@ -14,8 +14,8 @@
 #include "sphark/cli/options.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
-#include "sphark/schemes/spmhd/spmhd_diagnostics.hpp"
-#include "sphark/schemes/spmhd/spmhd_setup.hpp"
+#include "sphark/diagnostics/spmhd_diagnostics.hpp"
+#include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 
 using namespace sphark;
 
@@ -28,32 +28,29 @@ int main(int argc, char** argv) {
   core.rtol = 1e-4;
   core.atol = 1e-6;
   core.output_every = 0.05;  // advance() per interval, as the example (bounds ERK steps by the CFL each interval)
-  int nx = 64;
+  OrszagTangParams params;  // the example's defaults (scenes/orszag_tang)
+  params.nx = 64;
   std::string variant = "cleaning+resistivity";
   Real cfl = 1.0;  // examples/orszag_tang: so.cfl_safety = 1
-  Real skin = SpmhdOptions{}.skin;
   OptionParser parser("bench_orszag_tang_timing", "Orszag-Tang vortex to t_end without output: time, pair rate, div B");
   std::vector<std::string> steppers = erk_table_names();
   steppers.push_back("leapfrog");
   add_core_options(parser, core, steppers);
-  parser.add("--nx", &nx, "particles per row of the hexagonal lattice", Range{8, 4096});
-  parser.add("--variant", &variant, "div B control", OneOf{{"none", "resistivity", "cleaning", "cleaning+resistivity"}});
+  parser.add("--nx", &params.nx, "particles per row of the hexagonal lattice", Range{8, 4096});
+  parser.add("--variant", &variant, "div B control", OneOf{orszag_tang_variants()});
+  parser.add("--overclean", &params.overclean, "c_h = overclean x max fast speed (cleaning variants)", Range{1.0, 100.0});
+  parser.add_flag("--local-ch", &params.local_ch, "per-particle c_h (cleaning variants)");
   parser.add("--cfl", &cfl, "step = cfl x max_stable_dt (leapfrog; cap of the adaptive ERK step)", Positive{});
-  parser.add("--skin", &skin, "Verlet skin in units of h (results do not depend on it)", Positive{});
+  parser.add("--skin", &params.skin, "Verlet skin in units of h (results do not depend on it)", Positive{});
   parser.parse_or_exit(argc, argv);
   apply_thread_count(core.threads);
   run_profile().enable(core.profile);
 
-  const int ny = hexagonal_rows(nx);
-  const ParticleSet2D p = hexagonal_lattice_unit_box(nx, ny, kOrszagTangRho);
-  SpmhdOptions o;  // examples/orszag_tang: variant_options()
-  if (variant == "resistivity" || variant == "cleaning+resistivity") o.alpha_b = 1.0;
-  if (variant == "cleaning" || variant == "cleaning+resistivity") o.cleaning = Cleaning::Constrained;
-  o.skin = skin;
-  o.h_initial = o.eta * std::sqrt(1.0 / (static_cast<Real>(nx) * ny));
-  SpmhdScheme<2> scheme(p.m, o, unit_periodic_box());
-  std::vector<Real> y(scheme.size(), 0);
-  orszag_tang_initial_state(scheme, p, y.data());
+  OrszagTang ot(variant, params);
+  SpmhdScheme<2>& scheme = ot.scheme;
+  const ParticleSet2D& p = ot.particles;
+  const int nx = ot.nx, ny = ot.ny;
+  std::vector<Real> y = ot.y0;
   StepperOptions so = stepper_options(core, scheme, "bench_orszag_tang_timing");
   so.cfl_safety = cfl;
   auto stepper = make_stepper(scheme, so, 0.0, y.data());

@@ -17,7 +17,7 @@
 #include <numeric>
 #include <random>
 
-#include "sphark/schemes/spmhd/spmhd_setup.hpp"
+#include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 
 using namespace sphark;
 

@@ -14,7 +14,7 @@
 #include "sphark/cli/options.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
-#include "sphark/scenes/water_drop.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
 
 using namespace sphark;
 

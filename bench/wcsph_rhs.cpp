@@ -5,7 +5,7 @@
 #include <omp.h>
 
 #include "sphark/neighbours/neighbour_search.hpp"
-#include "sphark/scenes/water_drop.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
 
 using namespace sphark;
 

@@ -1,25 +1,42 @@
-// make_study_scene(): the scenes of examples/stepper_study by name.
+// make_study_scene(): the scenes of examples/stepper_study by name, from the registry that the
+// build generates (one register_<scene>_study_scenes per src/scenes/<scene>/study_scene.cpp).
 #include <cmath>
 #include <stdexcept>
 
-#include "sphark/scenes/cylinder_lattice_study.hpp"
-#include "study_scene_factories.hpp"
+#include "sphark/study/study_scene.hpp"
 
 namespace sphark {
 
-std::vector<std::string> study_scene_names() { return {"drop", "disc", "disc_damped", "orszag_tang", "lattice"}; }
+void register_all_study_scenes(StudySceneRegistry& r);  // generated: build/generated/study_registry.cpp
+
+namespace {
+const StudySceneRegistry& registry() {
+  static const StudySceneRegistry r = [] {
+    StudySceneRegistry all;
+    register_all_study_scenes(all);
+    return all;
+  }();
+  return r;
+}
+}  // namespace
+
+std::vector<std::string> study_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& e : registry()) names.push_back(e.name);
+  return names;
+}
 
 std::unique_ptr<StudyScene> make_study_scene(const std::string& name, const StudySceneOptions& options) {
   if (options.spacing < 0 || !std::isfinite(options.spacing))
     throw std::invalid_argument("spacing=" + std::to_string(options.spacing) + ": must be positive");
   if (options.t_end < 0 || !std::isfinite(options.t_end))
     throw std::invalid_argument("t_end=" + std::to_string(options.t_end) + ": must be positive");
-  if (name == "drop") return detail::make_drop_study_scene(options);
-  if (name == "disc") return detail::make_disc_study_scene(options, 0.0);
-  if (name == "disc_damped") return detail::make_disc_study_scene(options, 0.3);
-  if (name == "orszag_tang") return detail::make_orszag_tang_study_scene(options);
-  if (name == "lattice") return make_lattice_study_scene(options);
-  throw std::invalid_argument("scene=" + name + ": unknown (known: drop, disc, disc_damped, orszag_tang, lattice)");
+  std::string known;
+  for (const auto& e : registry()) {
+    if (e.name == name) return e.make(options);
+    known += (known.empty() ? "" : ", ") + e.name;
+  }
+  throw std::invalid_argument("scene=" + name + ": unknown (known: " + known + ")");
 }
 
 }  // namespace sphark

@@ -2,7 +2,7 @@
 // Shared set-ups of the cylinder-lattice tests.
 #include <vector>
 
-#include "sphark/scenes/cylinder_lattice_run.hpp"
+#include "sphark/scenes/cylinder_lattice/lattice_run.hpp"
 
 namespace sphark::lattice_test {
 

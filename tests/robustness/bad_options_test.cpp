@@ -37,8 +37,7 @@ void expect_rejected(const std::filesystem::path& bin, const BadInput& b, const 
 }  // namespace
 
 TEST(BadOptions, WaterDropRejectsEveryClassWithOneLineAndNoFiles) {
-  const auto bin = example_binary("water_drop");
-  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built (SPHARK_BUILD_EXAMPLES=OFF)";
+  const auto bin = require_example("water_drop");
   TempDir dir;
   const auto out = dir.path() / "out";
   std::ofstream(dir.path() / "a_file") << "x";
@@ -85,8 +84,7 @@ TEST(BadOptions, WaterDropRejectsEveryClassWithOneLineAndNoFiles) {
 }
 
 TEST(BadOptions, WaterDropRestartMustMatchTheCheckpoint) {
-  const auto bin = example_binary("water_drop");
-  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  const auto bin = require_example("water_drop");
   TempDir dir;
   const auto ok = run(bin, {"--out", (dir.path() / "first").string(), "--spacing", "0.2", "--t-end", "0.0004",
                             "--cleaning", "on", "--no-render", "--checkpoint-every", "0.0002",
@@ -106,8 +104,7 @@ TEST(BadOptions, WaterDropRestartMustMatchTheCheckpoint) {
 }
 
 TEST(BadOptions, SecondDerivative1dRejectsWithOneLineAndNoFiles) {
-  const auto bin = example_binary("second_derivative_1d");
-  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  const auto bin = require_example("second_derivative_1d");
   TempDir dir;
   const auto out = dir.path() / "out";
   std::ofstream(dir.path() / "a_file") << "x";
@@ -123,8 +120,7 @@ TEST(BadOptions, SecondDerivative1dRejectsWithOneLineAndNoFiles) {
 }
 
 TEST(BadOptions, GhostStaticRejectsWithOneLineAndNoFiles) {
-  const auto bin = example_binary("ghost_static");
-  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  const auto bin = require_example("ghost_static");
   TempDir dir;
   const auto out = dir.path() / "out";
   std::ofstream(dir.path() / "a_file") << "x";
@@ -141,8 +137,7 @@ TEST(BadOptions, GhostStaticRejectsWithOneLineAndNoFiles) {
 }
 
 TEST(BadOptions, CleaningDiscRejectsEveryClassWithOneLineAndNoFiles) {
-  const auto bin = example_binary("cleaning_disc");
-  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  const auto bin = require_example("cleaning_disc");
   TempDir dir;
   const auto out = dir.path() / "out";
   std::ofstream(dir.path() / "a_file") << "x";
@@ -168,13 +163,12 @@ TEST(BadOptions, CleaningDiscRejectsEveryClassWithOneLineAndNoFiles) {
 }
 
 TEST(BadOptions, OrszagTangRejectsEveryClassWithOneLineAndNoFiles) {
-  const auto bin = example_binary("orszag_tang");
-  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  const auto bin = require_example("orszag_tang");
   TempDir dir;
   const auto out = dir.path() / "out";
   std::ofstream(dir.path() / "a_file") << "x";
   // a checkpoint of another program
-  const auto disc = example_binary("cleaning_disc");
+  const auto disc = require_example("cleaning_disc");
   ASSERT_EQ(run(disc, {"--out", (dir.path() / "disc").string(), "--spacing", "0.25", "--t-end", "0.1",
                        "--output-every", "0.1", "--variant", "constrained_sigma0", "--checkpoint-every", "0.1",
                        "--no-render"},
@@ -202,8 +196,7 @@ TEST(BadOptions, OrszagTangRejectsEveryClassWithOneLineAndNoFiles) {
 }
 
 TEST(BadOptions, StepperStudyRejectsWithOneLineAndNoFiles) {
-  const auto bin = example_binary("stepper_study");
-  if (!std::filesystem::exists(bin)) GTEST_SKIP() << bin << " not built";
+  const auto bin = require_example("stepper_study");
   TempDir dir;
   const auto out = dir.path() / "out";
   const std::vector<BadInput> cases = {

@@ -35,15 +35,10 @@ bool bit_equal(const std::vector<Real>& a, const std::vector<Real>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
 }
 
-fs::path require_binary() {
-  const fs::path bin = example_binary("water_drop");
-  if (!fs::exists(bin)) ADD_FAILURE() << bin << " not built";
-  return bin;
-}
 }  // namespace
 
 TEST(ExampleRuns, ForcedNanIsRetriedThenFailsCleanlyWithTheLastGoodState) {
-  const fs::path bin = require_binary();
+  const fs::path bin = require_example("water_drop");
   TempDir dir;
   const fs::path out = dir.path() / "nan";
   const Finished f = run(bin, kTiny + std::vector<std::string>{"--out", out.string(), "--t-end", "0.002",
@@ -69,7 +64,7 @@ TEST(ExampleRuns, ForcedNanIsRetriedThenFailsCleanlyWithTheLastGoodState) {
 }
 
 TEST(ExampleRuns, RestartMatchesTheUninterruptedRun) {
-  const fs::path bin = require_binary();
+  const fs::path bin = require_example("water_drop");
   TempDir dir;
   for (const bool leapfrog : {true, false}) {
     SCOPED_TRACE(leapfrog ? "leapfrog dt 1e-5" : "ERK Bogacki-Shampine rtol 1e-4");
@@ -106,7 +101,7 @@ TEST(ExampleRuns, RestartMatchesTheUninterruptedRun) {
 }
 
 TEST(ExampleRuns, SigintLeavesALoadableCheckpointThatRestartsBitForBit) {
-  const fs::path bin = require_binary();
+  const fs::path bin = require_example("water_drop");
   TempDir dir;
   const fs::path run1 = dir.path() / "interrupted";
   // long enough (t_end 1: 1e5 leapfrog steps) that SIGINT surely comes mid-run

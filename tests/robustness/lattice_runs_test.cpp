@@ -30,19 +30,13 @@ Args operator+(Args a, const Args& b) {
   return a;
 }
 
-fs::path lattice_binary() {
-  const fs::path bin = example_binary("cylinder_lattice");
-  if (!fs::exists(bin)) ADD_FAILURE() << bin << " not built";
-  return bin;
-}
-
 int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
 }  // namespace
 
 TEST(LatticeRuns, BadOptionsExitTwoWithOneLineAndWriteNothing) {
   TempDir dir;
   const fs::path good = dir.path() / "good";
-  ASSERT_EQ(run(lattice_binary(), kSingle + Args{"--out", good.string(), "--t-end", "0.1", "--checkpoint-every", "0.1"},
+  ASSERT_EQ(run(require_example("cylinder_lattice"), kSingle + Args{"--out", good.string(), "--t-end", "0.1", "--checkpoint-every", "0.1"},
                 dir.path())
                 .exit_code,
             0);
@@ -69,7 +63,7 @@ TEST(LatticeRuns, BadOptionsExitTwoWithOneLineAndWriteNothing) {
   for (const auto& [args, message] : cases) {
     const fs::path out = dir.path() / "bad";
     Args all = Args{"--t-end", "10", "--out", out.string()} + args;
-    const Finished f = run(lattice_binary(), all, dir.path());
+    const Finished f = run(require_example("cylinder_lattice"), all, dir.path());
     SCOPED_TRACE(args.front() + " " + args.back());
     EXPECT_EQ(f.exit_code, 2) << f.err;
     EXPECT_EQ(lines(f.err), 1) << f.err;
@@ -83,10 +77,10 @@ TEST(LatticeRuns, LeapfrogRestartMatchesTheUninterruptedRun) {
   TempDir dir;
   const fs::path whole = dir.path() / "whole", first = dir.path() / "first", second = dir.path() / "second";
   const Args opts = kSingle + Args{"--output-every", "0.1", "--checkpoint-every", "0.1"};
-  ASSERT_EQ(run(lattice_binary(), opts + Args{"--out", whole.string(), "--t-end", "0.4"}, dir.path()).exit_code, 0);
-  ASSERT_EQ(run(lattice_binary(), opts + Args{"--out", first.string(), "--t-end", "0.2"}, dir.path()).exit_code, 0);
+  ASSERT_EQ(run(require_example("cylinder_lattice"), opts + Args{"--out", whole.string(), "--t-end", "0.4"}, dir.path()).exit_code, 0);
+  ASSERT_EQ(run(require_example("cylinder_lattice"), opts + Args{"--out", first.string(), "--t-end", "0.2"}, dir.path()).exit_code, 0);
   const std::string ckpt = "single_nonlinear/checkpoint.bin";
-  const Finished r = run(lattice_binary(), {"--restart", (first / ckpt).string(), "--out", second.string(), "--t-end", "0.4"},
+  const Finished r = run(require_example("cylinder_lattice"), {"--restart", (first / ckpt).string(), "--out", second.string(), "--t-end", "0.4"},
                          dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Checkpoint a = load_checkpoint(whole / ckpt), b = load_checkpoint(second / ckpt);
@@ -115,14 +109,14 @@ TEST(LatticeRuns, SigintLeavesALoadableCheckpointNamingTheMap) {
   TempDir dir;
   const fs::path out = dir.path() / "interrupted";
   // weak driving (v0 0.05): no penetration or accumulation event; t_end 1000: SIGINT comes mid-run
-  const Spawned s = spawn(lattice_binary(), kSingle + Args{"--out", out.string(), "--t-end", "1000", "--output-every",
+  const Spawned s = spawn(require_example("cylinder_lattice"), kSingle + Args{"--out", out.string(), "--t-end", "1000", "--output-every",
                                                            "0.5", "--v0", "0.05"},
                           dir.path());
   const Checkpoint c = interrupt_and_check(s, out / "single_nonlinear" / "lattice_00001.vtp",
                                            "nonlinear run stopped by signal 2", out / "single_nonlinear", 1000);
   EXPECT_EQ(c.text("run"), "nonlinear");
   // and it continues
-  const Finished r = run(lattice_binary(), {"--restart", (out / "single_nonlinear" / "checkpoint.bin").string(), "--t-end",
+  const Finished r = run(require_example("cylinder_lattice"), {"--restart", (out / "single_nonlinear" / "checkpoint.bin").string(), "--t-end",
                                             std::to_string(c.t + 0.5)},
                          dir.path());
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -140,7 +134,7 @@ TEST(LatticeRuns, SigintLeavesALoadableCheckpointNamingTheMap) {
 TEST(LatticeRuns, ForcedNanFailsWithTheLastGoodState) {
   TempDir dir;
   const fs::path out = dir.path() / "nan";
-  const Finished f = run(lattice_binary(), kSingle + Args{"--out", out.string(), "--t-end", "0.4", "--output-every", "0.1",
+  const Finished f = run(require_example("cylinder_lattice"), kSingle + Args{"--out", out.string(), "--t-end", "0.4", "--output-every", "0.1",
                                                           "--inject-nan-at", "0.25"},
                          dir.path());
   EXPECT_EQ(f.exit_code, 3) << f.err;
@@ -156,7 +150,7 @@ TEST(LatticeRuns, ForcedNanFailsWithTheLastGoodState) {
 TEST(LatticeRuns, SigintDuringTheEnsembleKeepsTheRunsDone) {
   TempDir dir;
   const fs::path out = dir.path() / "ensemble";
-  const Spawned s = spawn(lattice_binary(), {"--case", "ensemble", "--particles", "100", "--t-end", "0.5", "--seeds",
+  const Spawned s = spawn(require_example("cylinder_lattice"), {"--case", "ensemble", "--particles", "100", "--t-end", "0.5", "--seeds",
                                              "1000", "--v0-list", "0.1", "--map", "nonlinear", "--threads", "1",
                                              "--no-render", "--out", out.string()},
                           dir.path());
@@ -182,7 +176,7 @@ TEST(LatticeRuns, AnEventEndsTheDrivenRunAtItsRootWithAFrame) {
   // the mirror map's ghosts pile up at once (docs/cylinder_lattice.md): accumulation event, exit 0
   TempDir dir;
   const fs::path out = dir.path() / "event";
-  const Finished f = run(lattice_binary(), kSingle + Args{"--map", "mirror", "--out", out.string(), "--t-end", "2",
+  const Finished f = run(require_example("cylinder_lattice"), kSingle + Args{"--map", "mirror", "--out", out.string(), "--t-end", "2",
                                                           "--output-every", "0.5"},
                          dir.path());
   EXPECT_EQ(f.exit_code, 0) << f.err;

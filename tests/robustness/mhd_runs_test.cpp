@@ -40,12 +40,6 @@ bool bit_equal(const std::vector<Real>& a, const std::vector<Real>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
 }
 
-fs::path binary(const std::string& name) {
-  const fs::path bin = example_binary(name);
-  if (!fs::exists(bin)) ADD_FAILURE() << bin << " not built";
-  return bin;
-}
-
 Real max_abs_difference(const std::vector<Real>& a, const std::vector<Real>& b, std::size_t from, std::size_t to) {
   Real d = 0;
   for (std::size_t k = from; k < to; ++k) d = std::max(d, std::abs(a[k] - b[k]));
@@ -98,9 +92,9 @@ int expect_complete_files(const fs::path& dir) {
 bool split_run(const std::string& program, const Args& opts, const fs::path& dir, const std::string& tag,
                const std::string& checkpoint, Checkpoint& whole_end, Checkpoint& restarted_end) {
   const fs::path whole = dir / (tag + "_whole"), first = dir / (tag + "_first"), second = dir / (tag + "_second");
-  const Finished w = run(binary(program), opts + Args{"--out", whole.string(), "--t-end", "0.2"}, dir);
-  const Finished f = run(binary(program), opts + Args{"--out", first.string(), "--t-end", "0.1"}, dir);
-  const Finished r = run(binary(program), {"--restart", (first / checkpoint).string(), "--out", second.string(), "--t-end", "0.2"}, dir);
+  const Finished w = run(require_example(program), opts + Args{"--out", whole.string(), "--t-end", "0.2"}, dir);
+  const Finished f = run(require_example(program), opts + Args{"--out", first.string(), "--t-end", "0.1"}, dir);
+  const Finished r = run(require_example(program), {"--restart", (first / checkpoint).string(), "--out", second.string(), "--t-end", "0.2"}, dir);
   EXPECT_EQ(w.exit_code, 0) << w.err;
   EXPECT_EQ(f.exit_code, 0) << f.err;
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -130,7 +124,7 @@ TEST(MhdRuns, ForcedNanIsRetriedThenFailsCleanlyWithTheLastGoodState) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.program);
-    const Finished f = run(binary(c.program), c.args + Args{"--inject-nan-at", "0.07"}, dir.path());
+    const Finished f = run(require_example(c.program), c.args + Args{"--inject-nan-at", "0.07"}, dir.path());
     EXPECT_EQ(f.exit_code, 3) << f.err;
     EXPECT_NE(f.err.find("run FAILED at t="), std::string::npos) << f.err;
     EXPECT_NE(f.err.find(c.particle), std::string::npos) << f.err;  // which particles
@@ -207,7 +201,7 @@ TEST(MhdRuns, SigintLeavesALoadableCheckpointNamingTheVariant) {
   TempDir dir;
   const fs::path out = dir.path() / "interrupted";
   // long enough (t_end 1000) that SIGINT surely comes mid-run
-  const Spawned s = spawn(binary("orszag_tang"), kOrszagTang + Args{"--out", out.string(), "--t-end", "1000",
+  const Spawned s = spawn(require_example("orszag_tang"), kOrszagTang + Args{"--out", out.string(), "--t-end", "1000",
                                                                     "--output-every", "0.5"},
                           dir.path());
   const Checkpoint c = interrupt_and_check(s, out / "cleaning" / "orszag_tang_00001.vtp",
@@ -215,7 +209,7 @@ TEST(MhdRuns, SigintLeavesALoadableCheckpointNamingTheVariant) {
   EXPECT_EQ(c.text("run"), "cleaning");
   expect_complete_files(out / "cleaning");
   // --variant must agree with the checkpoint's
-  const Finished wrong = run(binary("orszag_tang"), {"--restart", (out / "cleaning" / "checkpoint.bin").string(),
+  const Finished wrong = run(require_example("orszag_tang"), {"--restart", (out / "cleaning" / "checkpoint.bin").string(),
                                                      "--variant", "euler", "--out", (dir.path() / "x").string()},
                              dir.path());
   EXPECT_EQ(wrong.exit_code, 2);
@@ -230,7 +224,7 @@ TEST(MhdRuns, AKilledRunLeavesOnlyCompleteFiles) {
   for (const int delay_ms : {0, 150, 400}) {  // after the first checkpoint
     SCOPED_TRACE(delay_ms);
     const fs::path out = dir.path() / ("killed_" + std::to_string(delay_ms));
-    const Spawned s = spawn(binary("orszag_tang"), kOrszagTang + Args{"--out", out.string(), "--t-end", "1000",
+    const Spawned s = spawn(require_example("orszag_tang"), kOrszagTang + Args{"--out", out.string(), "--t-end", "1000",
                                                                       "--output-every", "0.02", "--checkpoint-every",
                                                                       "0.02"},
                             dir.path());
@@ -249,12 +243,12 @@ TEST(MhdRuns, AKilledRunLeavesOnlyCompleteFiles) {
 TEST(MhdRuns, RestartOnAnotherOutputGridContinuesFromTheCheckpoint) {
   TempDir dir;
   const fs::path first = dir.path() / "first", second = dir.path() / "second";
-  ASSERT_EQ(run(binary("orszag_tang"), kOrszagTang + Args{"--out", first.string(), "--t-end", "0.1", "--output-every",
+  ASSERT_EQ(run(require_example("orszag_tang"), kOrszagTang + Args{"--out", first.string(), "--t-end", "0.1", "--output-every",
                                                           "0.05", "--checkpoint-every", "0.1"},
                 dir.path())
                 .exit_code,
             0);
-  const Finished r = run(binary("orszag_tang"), {"--restart", (first / "cleaning" / "checkpoint.bin").string(), "--out",
+  const Finished r = run(require_example("orszag_tang"), {"--restart", (first / "cleaning" / "checkpoint.bin").string(), "--out",
                                                  second.string(), "--t-end", "0.2", "--output-every", "0.03"},
                          dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;

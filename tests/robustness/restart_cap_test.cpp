@@ -12,7 +12,7 @@
 
 #include "sphark/run/time_loop.hpp"
 #include "sphark/operators/tait_eos.hpp"
-#include "sphark/scenes/water_drop.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
 #include "sphark/schemes/wcsph/wcsph_system.hpp"
 #include "../support/temp_dir.hpp"
 

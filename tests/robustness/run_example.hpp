@@ -2,6 +2,7 @@
 // Runs a built example program (build/bin/<name>, found next to this test's own build folder)
 // with stdout and stderr captured.
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,6 +17,14 @@ namespace sphark::test {
 
 inline std::filesystem::path example_binary(const std::string& name) {
   return std::filesystem::read_symlink("/proc/self/exe").parent_path().parent_path() / "bin" / name;
+}
+
+// The example program `name`, which the build makes before this test program (tests/CMakeLists.txt):
+// a missing one is a failure of the test, never a skip.
+inline std::filesystem::path require_example(const std::string& name) {
+  const std::filesystem::path bin = example_binary(name);
+  if (!std::filesystem::exists(bin)) ADD_FAILURE() << bin << " not built";
+  return bin;
 }
 
 struct Spawned {

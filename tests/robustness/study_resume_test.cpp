@@ -23,8 +23,7 @@ std::vector<std::string> lines(const std::string& text) {
 }  // namespace
 
 TEST(StudyResume, SigintKeepsCompleteRowsAndResumeRunsOnlyTheMissingCases) {
-  const fs::path bin = example_binary("stepper_study");
-  if (!fs::exists(bin)) GTEST_SKIP() << bin << " not built";
+  const fs::path bin = require_example("stepper_study");
   TempDir dir;
   const fs::path out = dir.path() / "study";
   // 1 adaptive + 3 leapfrog cases on a 52-particle drop (small: the sanitizer pass runs it too)

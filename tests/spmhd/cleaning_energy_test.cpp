@@ -7,7 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "sphark/schemes/spmhd/spmhd_setup.hpp"
+#include "sphark/scenes/cleaning_disc/cleaning_disc.hpp"
+#include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 
 namespace sphark {
 namespace {

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "sphark/integrate/stepper.hpp"
-#include "sphark/schemes/spmhd/spmhd_diagnostics.hpp"
-#include "sphark/schemes/spmhd/spmhd_setup.hpp"
+#include "sphark/diagnostics/spmhd_diagnostics.hpp"
+#include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 
 namespace sphark {
 namespace {

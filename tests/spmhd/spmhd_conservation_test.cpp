@@ -10,8 +10,8 @@
 #include <random>
 
 #include "sphark/operators/density_summation.hpp"
-#include "sphark/schemes/spmhd/spmhd_diagnostics.hpp"
-#include "sphark/schemes/spmhd/spmhd_setup.hpp"
+#include "sphark/diagnostics/spmhd_diagnostics.hpp"
+#include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 
 namespace sphark {
 namespace {

@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sphark/schemes/spmhd/spmhd_setup.hpp"
+#include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 
 namespace sphark {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "sphark/integrate/stepper.hpp"
-#include "sphark/scenes/water_drop.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
 #include "sphark/study/stability_limit.hpp"
 #include "sphark/study/study_run.hpp"
 

@@ -6,11 +6,11 @@
 //    (spacing 0.08 gives 0.86%, 0.04 gives 1.52%, both at h = 2 spacing; see docs/water_drop.md);
 //  - mass is exact by construction; total momentum stays at zero (symmetric forces, symmetric
 //    body force about the centre) to round-off of the time integration;
-//  - the cleaned run has a lower mean |div v| than the control.
+//  - the cleaned run has a mean |div v| at least 2.9x below the control's (measured 3.0x).
 #include <gtest/gtest.h>
 
 #include "sphark/integrate/stepper.hpp"
-#include "sphark/scenes/water_drop.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
 
 using namespace sphark;
 
@@ -61,5 +61,6 @@ TEST(ShortWaterDrop, CleaningLowersVelocityDivergence) {
   const ShortRun cleaned = run(0.08, true, 0.006);
   const ShortRun control = run(0.08, false, 0.006);
   std::printf("mean |div v|: cleaned %.4g, control %.4g\n", cleaned.mean_div_v, control.mean_div_v);
-  EXPECT_LT(cleaned.mean_div_v, control.mean_div_v);
+  // measured: control / cleaned = 3.014 / 1.004 = 3.00 (484 particles, delta-SPH in both runs)
+  EXPECT_GT(control.mean_div_v, 2.9 * cleaned.mean_div_v);
 }

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include "sphark/scenes/water_drop.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
 
 using namespace sphark;
 

@@ -2,9 +2,13 @@
 // The adapter between one scene and the stepper study (examples/stepper_study, issue 7): a
 // scene builds a fresh system + initial state per run, defines the CFL unit and the errors
 // against (a) the scene's exact/reference solution and (b) a reference run of the same
-// particle system (time-integration error only). Other scenes plug in by implementing
-// StudyScene and adding a line to make_study_scene().
+// particle system (time-integration error only).
+//
+// A scene plugs in from its own folder: src/scenes/<scene>/study_scene.cpp defines
+//   void register_<scene>_study_scenes(StudySceneRegistry& r);   // r.push_back({"name", factory})
+// and the build finds it (CMakeLists.txt generates the list of these calls); nothing else changes.
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +55,13 @@ class StudyScene {
   // What time_error / exact_error measure (for CSV headers and docs).
   virtual std::string error_description() const = 0;
 };
+
+using StudySceneFactory = std::function<std::unique_ptr<StudyScene>(const StudySceneOptions&)>;
+struct StudySceneEntry {
+  std::string name;
+  StudySceneFactory make;
+};
+using StudySceneRegistry = std::vector<StudySceneEntry>;
 
 // Throws std::invalid_argument (naming the option and value) for an unknown scene or bad options.
 std::unique_ptr<StudyScene> make_study_scene(const std::string& name, const StudySceneOptions& options);

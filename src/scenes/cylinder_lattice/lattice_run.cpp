@@ -13,7 +13,7 @@
 
 #include "sphark/boundaries/wall_relaxation.hpp"
 #include "sphark/run/signals.hpp"
-#include "sphark/scenes/cylinder_lattice_run.hpp"
+#include "sphark/scenes/cylinder_lattice/lattice_run.hpp"
 
 namespace sphark {
 

@@ -191,34 +191,6 @@ Real WcsphSystem<D, Kernel>::max_stable_dt(Real t, const Real* y, const Real* yd
   return dt;
 }
 
-template <int D, class Kernel>
-WcsphDiagnostics<D> WcsphSystem<D, Kernel>::diagnostics(Real t, const Real* y) {
-  evaluate(t, y);
-  WcsphDiagnostics<D> d;
-  const auto x = vector_field<D>(y, layout_, Field::Position);
-  const auto v = vector_field<D>(y, layout_, Field::Velocity);
-  const auto rho = scalar_field(y, layout_, Field::Density);
-  const Real m = p_.mass, c2 = p_.sound_speed * p_.sound_speed, r0 = p_.rho0, ch = p_.cleaning_speed();
-  const std::size_t n = layout_.particles();
-  for (std::size_t a = 0; a < n; ++a) {
-    d.kinetic_energy += 0.5 * m * v.col(a).squaredNorm();
-    d.momentum += m * v.col(a);
-    const Real r = rho[a];
-    // integral_{rho0}^{rho} P/rho'^2 drho' for the Tait EOS (26)
-    d.internal_energy += m * c2 * r0 / 7.0 * ((std::pow(r, 6) - std::pow(r0, 6)) / (6 * std::pow(r0, 7)) + 1 / r - 1 / r0);
-    if (p_.body_potential) d.potential_energy += m * p_.body_potential(Vec<D>(x.col(a)));
-    if (p_.cleaning) {
-      const Real psi = y[layout_.offset(Field::Psi) + a];
-      d.psi_energy += m * psi * psi / (2 * ch * ch * r * r);  // eq. (37)
-    }
-    d.mean_abs_div_v += std::abs(div_v_[a]);
-    d.max_rel_density_error = std::max(d.max_rel_density_error, std::abs(r - r0) / r0);
-  }
-  d.mean_abs_div_v /= static_cast<Real>(n);
-  d.total_energy = d.kinetic_energy + d.internal_energy + d.potential_energy + d.psi_energy;
-  return d;
-}
-
 template class WcsphSystem<2, CubicSpline<2>>;
 template class WcsphSystem<2, QuinticSpline<2>>;
 template class WcsphSystem<2, WendlandC2<2>>;

@@ -83,7 +83,8 @@ class SpmhdScheme final : public OdeSystem {
   Real cleaning_speed() const { return ch_; }  // global c_h (the largest if local_ch)
   const std::vector<Real>& cleaning_speeds() const { return in_particle_order(chs_, 1, out_chs_); }  // c_h,a
 
-  // rhs() into an internal buffer, to refresh the per-particle quantities above.
+  // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
+  // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
   int evaluate(Real t, const Real* y) noexcept;
 
  private:
@@ -122,6 +123,8 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> x_;  // fixed positions, or a copy of the current ones (slot order, as all below)
   std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, chs_, B_, divB_, divv_;
   std::vector<Real> scratch_;
+  std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
+  long evaluated_version_ = -1;
   // Pair-loop arrays (SoA): 1/h, 1/h^(D+2) (kernel gradient scale), o = 1/(Omega rho^2),
   // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
   std::vector<Real> hinv_, fscale_, o_, oM_, oB_, opsi_;

@@ -6,6 +6,7 @@
 //   dv/dt   = eq. (27) pressure + artificial viscosity + body force  - grad psi / rho  (eq. (39))
 //   drho/dt = eq. (28) continuity (sign as eq. (36)) + density diffusion (delta-SPH)
 //   dpsi/dt = -c_h^2 rho div v  (eq. (30), div v by eq. (36))  - psi / tau
+// Energies and errors of a state: diagnostics/wcsph_diagnostics.hpp.
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -18,18 +19,6 @@
 #include "sphark/state/state_layout.hpp"
 
 namespace sphark {
-
-template <int D>
-struct WcsphDiagnostics {
-  Real kinetic_energy = 0;
-  Real internal_energy = 0;   // Tait EOS: integral of P / rho^2 d rho per unit mass
-  Real potential_energy = 0;  // body-force potential
-  Real psi_energy = 0;        // eq. (37): psi^2 / (2 c_h^2 rho^2) per unit mass
-  Real total_energy = 0;
-  Vec<D> momentum = Vec<D>::Zero();
-  Real mean_abs_div_v = 0;    // particle mean of |div v|, eq. (36)
-  Real max_rel_density_error = 0;  // max |rho - rho0| / rho0
-};
 
 template <int D, class Kernel>
 class WcsphSystem final : public OdeSystem {
@@ -57,9 +46,6 @@ class WcsphSystem final : public OdeSystem {
   // last evaluation (bit for bit); the references stay valid until the next evaluation.
   const std::vector<Real>& pressure(Real t, const Real* y) { return evaluate(t, y), pressure_; }
   const std::vector<Real>& div_v(Real t, const Real* y) { return evaluate(t, y), div_v_; }
-
-  // Energies, momentum and errors of state y.
-  WcsphDiagnostics<D> diagnostics(Real t, const Real* y);
 
   long neighbour_builds() const { return builds_; }
   long rhs_calls() const { return rhs_calls_; }

@@ -1,0 +1,106 @@
+#pragma once
+// The one example driver: a time-integrating example is a Scene (its options, its runs and its
+// report) handed to run_scene_main(). The driver does everything else the same way for every
+// scene: the core options (--out, --t-end, --stepper, --rtol, ...) and the run-control options
+// (--checkpoint-every, --restart, --inject-nan-at), --restart's stored options and its checks,
+// the start-up (threads, --profile, the output directory, SIGINT/SIGTERM), each run through the
+// shared time loop (run/time_loop.hpp: diagnostics CSV, VTK series, checkpoints, last good state
+// on a failure), the report of how each run ended, and the exit code
+// (0 ok, 2 bad options, 3 a run failed, 128 + signal when stopped, 1 any other error).
+//
+//   int main(int argc, char** argv) {
+//     WaterDropScene scene;
+//     return run_scene_main(scene, argc, argv);
+//   }
+//
+// Order of calls: set_defaults(core) -> add_options(parser) -> (parse) -> check_options(parser,
+// core, control, restarting) -> [run_instead(core)] -> run_names() -> for each: make_run(name, core) -> run_time_loop
+// -> finished(name, run, result) -> report(core, runs, all_ok). A scene throws std::invalid_argument from
+// make_run for a value that only the scene can reject (one line, exit 2).
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sphark/cli/options.hpp"
+#include "sphark/integrate/ode_system.hpp"
+#include "sphark/integrate/stepper_options.hpp"
+#include "sphark/io/particle_frame.hpp"
+#include "sphark/run/restart.hpp"
+#include "sphark/run/time_loop.hpp"
+#include "sphark/state/state_layout.hpp"
+
+namespace sphark {
+
+// One run of a scene (a variant: "cleaned", "cleaning", "mirror", ...): its system, its initial
+// state and what it records. Owns the system and every buffer its frames point into.
+class SceneRun {
+ public:
+  virtual ~SceneRun() = default;
+  virtual OdeSystem& system() = 0;
+  virtual const StateLayout& layout() const = 0;
+  virtual std::vector<Real> initial_state() = 0;
+  // The stepper of this run from the core options (default: stepper_options(core, system(),
+  // program), which says so when ark-imex meets a run without a stiff part).
+  virtual StepperOptions stepper(const CoreOptions& core, std::string_view program);
+  // The diagnostics row at (t, y) (its columns) and the VTK frame of (t, y), both functions of
+  // (t, y): a frame's arrays stay valid until the next call.
+  virtual std::vector<std::string> columns() const = 0;
+  virtual std::vector<Real> diagnostics(Real t, const Real* y, const StepperStats& total) = 0;
+  virtual ParticleFrame frame(Real t, const Real* y) = 0;
+  // Optional early ends (see TimeLoopHooks::finished / root) and numbers kept in checkpoints.
+  virtual bool finished(Real /*t*/) { return false; }
+  virtual bool root(Real /*t*/, const std::vector<int>& /*found*/) { return false; }
+  virtual std::vector<std::pair<std::string, Real*>> saved_numbers() { return {}; }
+  // Where and how often it writes: the driver fills `s` (program, run, options, scene text,
+  // t_end, sample/frame intervals from --output-every, <dir>/diagnostics.csv, <dir>/<name>_NNNNN.vtp,
+  // <dir>/checkpoint.bin, run control) before this call; a scene changes what differs.
+  virtual void settings(TimeLoopSettings& /*s*/) {}
+};
+
+class Scene {
+ public:
+  virtual ~Scene() = default;
+  virtual std::string program() const = 0;      // "water_drop": binary, checkpoint owner, messages
+  virtual std::string description() const = 0;  // the first line of --help
+  // The scene's defaults of the core options (out, t_end, stepper, tolerances, output_every).
+  virtual void set_defaults(CoreOptions& core) = 0;
+  // --stepper names this scene accepts (default: every core stepper).
+  virtual std::vector<std::string> stepper_names() const;
+  // Where checkpoints go, for --help ("<out>/<run>/checkpoint.bin").
+  virtual std::string checkpoint_help() const { return "<out>/<run>/checkpoint.bin"; }
+  virtual void add_options(OptionParser& p) = 0;
+  // Checks across options after parsing (p.fail: one line, exit 2, nothing written); may complete
+  // core options whose default depends on the scene's (e.g. --output-every of a case).
+  virtual void check_options(const OptionParser& /*p*/, CoreOptions& /*core*/, const RunControlOptions& /*control*/,
+                             bool /*restarting*/) {}
+  // A case that is not a sequence of time-loop runs (e.g. an ensemble of short runs): its exit
+  // code, or nullopt to go on with run_names(). Called after the start-up.
+  virtual std::optional<int> run_instead(const CoreOptions& /*core*/) { return std::nullopt; }
+  // The runs the options ask for, in order; each gets <out>/<subdirectory(name)>.
+  virtual std::vector<std::string> run_names() const = 0;
+  // --restart continues the checkpoint's run alone; a scene names the option that contradicts it
+  // (p.fail). Default: the run must be one of run_names().
+  virtual void check_restart_run(const OptionParser& p, const std::string& checkpoint_run) const;
+  virtual std::filesystem::path subdirectory(const std::string& run) const { return run; }
+  // The scene's parameters of a run as "key=value" lines: stored in its checkpoints, and a
+  // restart must give the same text.
+  virtual std::string scene_text(const std::string& run) const = 0;
+  virtual std::unique_ptr<SceneRun> make_run(const std::string& run, const CoreOptions& core) = 0;
+  // After each run (also a failed or stopped one), and once at the end of all (or after the first
+  // run that did not end ok) with the runs planned (all of run_names(), or a restart's one):
+  // summaries and pictures. report() returns an exit code (non-zero if writing the report
+  // failed); the driver returns the runs' code if that is not 0, else report()'s.
+  virtual void finished(const std::string& /*run*/, SceneRun& /*r*/, const TimeLoopResult& /*result*/) {}
+  virtual int report(const CoreOptions& /*core*/, const std::vector<std::string>& /*runs*/, bool /*all_ok*/) {
+    return 0;
+  }
+};
+
+// Parses the options, runs the scene and returns the exit code (see the top of this file).
+int run_scene_main(Scene& scene, int argc, char** argv);
+
+}  // namespace sphark

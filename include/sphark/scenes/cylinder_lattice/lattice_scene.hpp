@@ -1,0 +1,50 @@
+#pragma once
+// The cylinder-lattice example (seed 004, §8) for the run driver (run/scene.hpp): a single run,
+// the medium-resolution comparison of the ghost maps (§8.1, Fig. 9), or the low-resolution
+// ensemble of t_max = min{t_final, t_penetration, t_accumulation} (§8.2, eq. 37, Fig. 10).
+#include <string>
+#include <vector>
+
+#include "sphark/run/scene.hpp"
+#include "sphark/scenes/cylinder_lattice/lattice_run.hpp"
+
+namespace sphark {
+
+class CylinderLatticeScene final : public Scene {
+ public:
+  CylinderLatticeScene();
+  std::string program() const override { return "cylinder_lattice"; }
+  std::string description() const override;
+  void set_defaults(CoreOptions& core) override;
+  std::string checkpoint_help() const override {
+    return "<out>/single_<map>/ or <out>/<map>/checkpoint.bin (single, medium)";
+  }
+  void add_options(OptionParser& p) override;
+  void check_options(const OptionParser& p, CoreOptions& core, const RunControlOptions& control,
+                     bool restarting) override;
+  std::optional<int> run_instead(const CoreOptions& core) override;
+  std::vector<std::string> run_names() const override { return maps_; }
+  std::filesystem::path subdirectory(const std::string& map) const override;
+  void check_restart_run(const OptionParser& p, const std::string& checkpoint_run) const override;
+  std::string scene_text(const std::string& map) const override;
+  std::unique_ptr<SceneRun> make_run(const std::string& map, const CoreOptions& core) override;
+  void finished(const std::string& map, SceneRun& r, const TimeLoopResult& result) override;
+  int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
+
+  struct Outcome {
+    std::string map;
+    LatticeRunResult result;
+    double wall_seconds = 0;
+  };
+
+ private:
+  LatticeRunConfig run_;            // params (map, v0, ...), particles, seed, t_end, stepper
+  std::vector<std::string> maps_;   // "mirror", "nonlinear"
+  std::vector<Real> v0s_;           // ensemble
+  int seeds_ = 20;                  // ensemble: seeds 1..seeds
+  std::string case_ = "single", bc_ = "free-slip", map_ = "default", stepper_;
+  long particles_ = 0, seed_ = 1;
+  std::vector<Outcome> outcomes_;
+};
+
+}  // namespace sphark

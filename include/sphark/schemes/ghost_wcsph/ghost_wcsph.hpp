@@ -1,0 +1,122 @@
+#pragma once
+// Weakly compressible SPH with variable h ("grad-h") and ghost particles across a curved wall
+// (seed 004, §2 approach C: equal masses, the ghost of a particle at distance s from the wall
+// placed at Psi(s) or Psi0(s)), in a box that may be periodic; the kernel is a template
+// parameter like the other schemes' (kernels/kernels.hpp). 2D.
+//
+//   rho_a = sum_b m W(|x_a - x_b|, h_a),  h_a = eta (m / rho_a)^(1/2)  seed 004 eq. (1); seed 000 eqs. (4)-(5)
+//     summed over real AND ghost particles (equal masses, approach C). A ghost carries the
+//     density, h, Omega and pressure of its inner particle and its velocity mirrored (seed 004
+//     §1-2); its OWN support radius (eq. 1 solved at the ghost's position) is computed as well and
+//     drives the accumulation event.
+//   P = c_s^2 rho0 / 7 ((rho/rho0)^7 - 1) + P_b                         seed 000, eq. (26) (Tait) + background
+//     P_b = background * c_s^2 rho0 / 7 >= 0 (docs/cylinder_lattice.md, "Background pressure").
+//   dv_a/dt = - sum_b m [P_a/(Omega_a rho_a^2) grad W(h_a) + P_b/(Omega_b rho_b^2) grad W(h_b)]
+//             + Monaghan viscosity (h_ab, grad W averaged) + (v0 - v_x)/tau x   (grad-h form of seed 000 eq. (27); seed 004 eq. (36))
+//   dx_a/dt = v_a
+// State: x, v of the real particles (density by summation). Ghosts are regenerated from the
+// current positions inside every RHS evaluation.
+//
+// Events (root functions, integrate/ode_system.hpp):
+//   g_0 = min_a (-s_a)                             penetration: a particle crosses the wall
+//   g_1 = min_ghost h_g / h_ref - accumulation      accumulation: a ghost's support collapses
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "sphark/boundaries/ghosts.hpp"
+#include "sphark/integrate/ode_system.hpp"
+#include "sphark/neighbours/neighbour_search.hpp"
+#include "sphark/state/state_layout.hpp"
+
+namespace sphark {
+
+struct GhostWcsphParams {
+  Real rho0 = 1;          // reference density of the Tait EOS
+  Real sound_speed = 5;   // c_s of the Tait EOS
+  Real background = 0.15; // background pressure P_b in units of c_s^2 rho0 / 7
+  Real mass = 0;          // particle mass (all equal, real and ghost)
+  Real eta = 1.3;         // h = eta (m/rho)^(1/2)
+  Real alpha = 0.1;       // Monaghan artificial viscosity
+  Real v0 = 0.5;          // driving velocity, seed 004 eq. (36)
+  Real tau = 1;           // driving time, eq. (36); <= 0 switches the driving off
+  GhostMap map = GhostMap::DensityPreserving;
+  VelocityBc velocity = VelocityBc::FreeSlip;
+  Real cfl = 0.25;        // dt <= cfl h_min / (c_max + |v|_max), dt <= cfl sqrt(h_min / a_max)
+  Real h_ref = 0;         // uniform-lattice h (eta dx) for the accumulation event (0: no event)
+  Real accumulation = 0.05;  // accumulation when a ghost's h < accumulation * h_ref ("H close to zero")
+  Real h_tol = 1e-7;      // relative tolerance of the h-rho Newton solve
+};
+
+// P_b = background * c_s^2 rho0 / 7, added to the Tait pressure.
+inline Real background_pressure(const GhostWcsphParams& p) {
+  return p.background * p.sound_speed * p.sound_speed * p.rho0 / 7;
+}
+
+template <class K>
+class GhostWcsph : public OdeSystem {
+ public:
+  // `box` bounds the particles (periodic along its periodic axes); the fluid lies on the
+  // s < 0 side of `wall`. Throws std::invalid_argument for bad parameters.
+  GhostWcsph(std::size_t particles, GhostWcsphParams params, Wall<2> wall, PeriodicBox<2> box);
+
+  const StateLayout& layout() const { return layout_; }
+  const GhostWcsphParams& scheme_params() const { return p_; }
+  std::size_t particles() const { return n_; }
+
+  std::size_t size() const override { return layout_.size(); }
+  const StateLayout* state_layout() const override { return &layout_; }
+  int rhs(Real t, const Real* y, Real* ydot) override;
+  std::size_t position_offset() const override { return layout_.offset(Field::Position); }
+  std::size_t velocity_offset() const override { return layout_.offset(Field::Velocity); }
+  std::size_t position_size() const override { return layout_.field_size(Field::Position); }
+  // CFL and force criteria at y (force: ydot's accelerations, or f(t, y) when ydot is null).
+  Real max_stable_dt(Real t, const Real* y, const Real* ydot) override;
+  int num_roots() const override { return 2; }
+  int roots(Real t, const Real* y, Real* g) override;
+  std::string last_error() const override { return error_; }
+
+  // Ghosts, densities and h of state y (what rhs() does before the forces); 0 ok, else error.
+  int prepare(const Real* y);
+  // prepare(y) unless the positions of y are those of the last prepare (h, rho, ghost
+  // positions depend on the positions alone).
+  int prepare_if_moved(const Real* y);
+
+  // After rhs()/prepare(): per particle (real first, then ghosts: their source's values) density,
+  // h, pressure; min_ghost_h(): the smallest OWN support radius / 2 of a ghost.
+  std::size_t ghost_count() const { return ghosts_.size(); }
+  const std::vector<Real>& density() const { return rho_; }
+  const std::vector<Real>& smoothing_length() const { return h_; }
+  const std::vector<Real>& pressure() const { return pressure_; }
+  const GhostLayer<2>& ghosts() const { return ghosts_; }
+  const std::vector<Real>& all_positions() const { return xall_; }  // real then ghost, 2 each
+  // sum over real-ghost pairs of m * (pair acceleration on the real particle) in the last rhs().
+  Vec<2> wall_force() const { return wall_force_; }
+  Real min_ghost_h() const;
+  long rhs_calls() const { return rhs_calls_; }
+
+ private:
+  int solve_densities(std::size_t total);
+  int place_ghosts_and_densities(const Real* x, const Real* v);
+  Real max_acceleration(Real t, const Real* y, const Real* ydot);
+
+  GhostWcsphParams p_;
+  std::size_t n_;
+  StateLayout layout_;
+  PeriodicBox<2> box_;
+  Wall<2> wall_;
+  Real mirror_limit_;  // the mirror map's range |s| <= limit (a cylinder's radius; a plane: none)
+  GhostLayer<2> ghosts_;
+  NeighbourSearch<2> search_;
+  std::vector<Real> xall_, vall_, mass_, rho_, h_, omega_, pressure_, q_;
+  std::vector<Real> ghost_h_;     // each ghost's own h from eq. (1) at its position (accumulation)
+  std::vector<Real> x_prepared_;  // positions of the last prepare()
+  std::vector<Real> evaluated_y_, scratch_;  // the state of the last rhs(); its derivative buffer
+  bool prepared_ = false;
+  Real width_ = 0, max_accel_ = 0, h_min_ = 0;
+  Vec<2> wall_force_ = Vec<2>::Zero();
+  long rhs_calls_ = 0;
+  std::string error_;
+};
+
+}  // namespace sphark

@@ -1,0 +1,105 @@
+#include "sphark/diagnostics/spmhd_diagnostics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sphark {
+
+template <int D, class K>
+SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<D, K>& s, Real t, const Real* y) {
+  SpmhdDiagnostics d;
+  if (s.evaluate(t, y) != 0) {
+    d.mean_h_divb_over_b = d.max_h_divb_over_b = std::nan("");
+    return d;
+  }
+  const StateLayout& L = s.layout();
+  const std::size_t n = s.particles();
+  const auto& m = s.masses();
+  const auto& B = s.magnetic_field();
+  const Real* v = L.has(Field::Velocity) ? y + L.offset(Field::Velocity) : nullptr;
+  const Real* u = L.has(Field::InternalEnergy) ? y + L.offset(Field::InternalEnergy) : nullptr;
+  const Real* psi = L.has(Field::Psi) ? y + L.offset(Field::Psi) : nullptr;
+  const Real ch = s.cleaning_speed();
+  std::size_t counted = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    const Real rho = s.rho()[a];
+    const Real b2 = B[3 * a] * B[3 * a] + B[3 * a + 1] * B[3 * a + 1] + B[3 * a + 2] * B[3 * a + 2];
+    d.max_h_divb = std::max(d.max_h_divb, s.h()[a] * std::abs(s.div_b()[a]));
+    if (b2 > 0) {
+      const Real e = s.h()[a] * std::abs(s.div_b()[a]) / std::sqrt(b2);
+      d.mean_h_divb_over_b += e;
+      d.max_h_divb_over_b = std::max(d.max_h_divb_over_b, e);
+      ++counted;
+    }
+    d.magnetic_energy += m[a] * b2 / (2 * rho);
+    if (v) {
+      Real v2 = 0;
+      for (int k = 0; k < D; ++k) {
+        v2 += v[D * a + k] * v[D * a + k];
+        d.momentum[k] += m[a] * v[D * a + k];
+      }
+      d.kinetic_energy += 0.5 * m[a] * v2;
+    }
+    if (u) d.thermal_energy += m[a] * u[a];
+    if (psi && s.options().local_ch) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho);  // state psi / c_h,a
+    else if (psi && ch > 0) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho * ch * ch);
+  }
+  if (counted > 0) d.mean_h_divb_over_b /= static_cast<Real>(counted);
+  d.total_energy = d.kinetic_energy + d.magnetic_energy + d.thermal_energy + d.psi_energy;
+  d.cleaning_speed = ch;
+  return d;
+}
+
+template <int D, class K>
+ParticleFrame SpmhdFrame::build(SpmhdScheme<D, K>& s, Real t, const Real* y, const PeriodicBox<D>* box) {
+  if (s.evaluate(t, y) != 0) throw std::runtime_error("SPMHD frame at t=" + std::to_string(t) + ": " + s.last_error());
+  const std::size_t n = s.particles();
+  const StateLayout& L = s.layout();
+  const auto& B = s.magnetic_field();
+  magnetic_pressure_.resize(n);
+  error_.resize(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    const Real b2 = B[3 * a] * B[3 * a] + B[3 * a + 1] * B[3 * a + 1] + B[3 * a + 2] * B[3 * a + 2];
+    magnetic_pressure_[a] = 0.5 * b2;
+    error_[a] = b2 > 0 ? s.h()[a] * std::abs(s.div_b()[a]) / std::sqrt(b2) : 0.0;
+  }
+  const Real* x = L.has(Field::Position) ? y + L.offset(Field::Position) : s.positions().data();
+  positions_.assign(x, x + D * n);
+  if (box) box->wrap_all(x, n, positions_.data());
+  density_ = s.rho();
+  div_b_ = s.div_b();
+  field_ = B;
+  h_ = s.h();
+  ParticleFrame f;
+  f.dim = D;
+  f.count = n;
+  f.positions = positions_.data();
+  f.arrays = {{"density", density_.data(), 1}, {"magnetic_pressure", magnetic_pressure_.data(), 1},
+              {"div_B", div_b_.data(), 1}, {"h_divB_over_B", error_.data(), 1}};
+  if (L.has(Field::Velocity)) {
+    pressure_ = s.pressure();
+    f.arrays.push_back({"pressure", pressure_.data(), 1});
+  }
+  f.arrays.push_back({"magnetic_field", field_.data(), 3});
+  if (L.has(Field::Velocity)) {
+    const Real* v = y + L.offset(Field::Velocity);
+    velocity_.assign(v, v + D * n);
+    f.arrays.push_back({"velocity", velocity_.data(), D});
+  }
+  if (L.has(Field::Psi)) {
+    const Real* psi = y + L.offset(Field::Psi);
+    psi_.assign(psi, psi + n);
+    f.arrays.push_back({"psi", psi_.data(), 1});
+  }
+  f.arrays.push_back({"h", h_.data(), 1});
+  return f;
+}
+
+template SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<2, CubicSpline<2>>&, Real, const Real*);
+template SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<3, CubicSpline<3>>&, Real, const Real*);
+template ParticleFrame SpmhdFrame::build(SpmhdScheme<2, CubicSpline<2>>&, Real, const Real*, const PeriodicBox<2>*);
+template ParticleFrame SpmhdFrame::build(SpmhdScheme<3, CubicSpline<3>>&, Real, const Real*, const PeriodicBox<3>*);
+
+}  // namespace sphark

@@ -1,0 +1,134 @@
+// run_scene_main: the one driver of every time-integrating example (run/scene.hpp).
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <optional>
+#include <stdexcept>
+
+#include "sphark/integrate/stepper.hpp"
+#include "sphark/run/restart.hpp"
+#include "sphark/run/scene.hpp"
+
+namespace sphark {
+
+StepperOptions SceneRun::stepper(const CoreOptions& core, std::string_view program) {
+  return stepper_options(core, system(), program);
+}
+
+std::vector<std::string> Scene::stepper_names() const { return core_stepper_names(); }
+
+void Scene::check_restart_run(const OptionParser& p, const std::string& checkpoint_run) const {
+  const std::vector<std::string> runs = run_names();
+  if (std::find(runs.begin(), runs.end(), checkpoint_run) != runs.end()) return;
+  std::string listed;
+  for (const auto& r : runs) listed += (listed.empty() ? "" : ", ") + r;
+  p.fail("--restart", "the checkpoint's run '" + checkpoint_run + "' is not among the runs these options ask for (" +
+                          listed + ")");
+}
+
+namespace {
+
+struct ParsedRun {
+  CoreOptions core;
+  RunControlOptions control;
+  std::vector<std::string> runs;
+  std::vector<std::string> stored_options;  // argv[1..] of this run (a restart's stored ones first)
+};
+
+ParsedRun parse(Scene& scene, int argc, char** argv, const Checkpoint* restart) {
+  const std::string program = scene.program();
+  const std::vector<std::string> args = run_arguments(program, argc, argv, restart);
+  ParsedRun r;
+  scene.set_defaults(r.core);
+  OptionParser parser(program, scene.description());
+  add_core_options(parser, r.core, scene.stepper_names());
+  scene.add_options(parser);
+  add_run_options(parser, r.control, scene.checkpoint_help());
+  const std::vector<const char*> parse_argv = as_argv(args);
+  parser.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
+  check_run_options(parser, r.control, r.core);
+  scene.check_options(parser, r.core, r.control, restart != nullptr);
+  r.runs = scene.run_names();
+  if (restart) {  // one run: the checkpoint's
+    const std::string name = restart->text("run");
+    scene.check_restart_run(parser, name);
+    r.runs = {name};
+    check_restart_text(parser, *restart, "scene", scene.scene_text(name), "scene parameters");
+    check_restart_t_end(parser, *restart, r.core.t_end);
+  }
+  r.stored_options.assign(args.begin() + 1, args.end());
+  return r;
+}
+
+TimeLoopSettings default_settings(const Scene& scene, const std::string& name, const ParsedRun& p,
+                                  const std::filesystem::path& dir, const Checkpoint* restart, SceneRun& run) {
+  TimeLoopSettings ts;
+  ts.program = scene.program();
+  ts.run = name;
+  ts.argv = p.stored_options;
+  ts.texts = {{"scene", scene.scene_text(name)}};
+  ts.t_end = p.core.t_end;
+  ts.sample_every = p.core.output_every > 0 ? p.core.output_every : p.core.t_end;  // 0: first and last only
+  ts.diagnostics_csv = dir / "diagnostics.csv";
+  ts.columns = run.columns();
+  ts.frames_dir = dir;
+  ts.frames_basename = scene.program();
+  ts.frame_every = ts.sample_every;
+  apply_run_control(ts, p.control, restart, dir / "checkpoint.bin");
+  return ts;
+}
+
+TimeLoopHooks hooks_of(SceneRun& run) {
+  TimeLoopHooks h;
+  h.diagnostics = [&run](Real t, const Real* y, const StepperStats& st) { return run.diagnostics(t, y, st); };
+  h.frame = [&run](Real t, const Real* y) { return run.frame(t, y); };
+  h.finished = [&run](Real t) { return run.finished(t); };
+  h.root = [&run](Real t, const std::vector<int>& found) { return run.root(t, found); };
+  h.state = run.saved_numbers();
+  return h;
+}
+
+// One run through the time loop; its exit status (report_time_loop_end).
+int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Checkpoint* restart) {
+  const std::filesystem::path dir = p.core.out / scene.subdirectory(name);
+  prepare_output_dir(dir, scene.program());
+  std::unique_ptr<SceneRun> run = scene.make_run(name, p.core);
+  const TimeLoopHooks hooks = hooks_of(*run);
+  TimeLoopSettings ts = default_settings(scene, name, p, dir, restart, *run);
+  run->settings(ts);
+  const StepperOptions so = run->stepper(p.core, scene.program());
+  std::fprintf(stderr, "%s: %s run, %zu particles, %s -> %s\n", scene.program().c_str(), name.c_str(),
+               run->layout().particles(), describe(so).c_str(), dir.c_str());
+  // A restart takes its state from the checkpoint: the initial conditions are not built.
+  std::vector<Real> y0 = restart ? std::vector<Real>(run->layout().size(), 0.0) : run->initial_state();
+  const TimeLoopResult result = run_time_loop(run->system(), run->layout(), so, std::move(y0), ts, hooks);
+  std::printf("%s %s: %s\n", scene.program().c_str(), name.c_str(), format_stats(result.stats).c_str());
+  scene.finished(name, *run, result);
+  return report_time_loop_end(result);
+}
+
+}  // namespace
+
+int run_scene_main(Scene& scene, int argc, char** argv) {
+  const std::string program = scene.program();
+  const std::optional<Checkpoint> restart = load_restart_option(argc, argv, program);
+  const ParsedRun p = parse(scene, argc, argv, restart ? &*restart : nullptr);
+  start_run(p.core, program);
+  try {
+    if (const std::optional<int> code = scene.run_instead(p.core)) return *code;
+    int status = 0;
+    for (const std::string& name : p.runs) {
+      status = run_one(scene, name, p, restart ? &*restart : nullptr);
+      if (status != 0) break;  // a stop signal (checkpoint written) or a failure (last good state written)
+    }
+    const int report = scene.report(p.core, p.runs, status == 0);
+    return status != 0 ? status : report;
+  } catch (const std::invalid_argument& e) {
+    exit_usage_error(program, "", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace sphark

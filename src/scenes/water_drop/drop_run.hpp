@@ -1,0 +1,64 @@
+#pragma once
+// One water-drop run (cleaned or control) for the run driver: its system, diagnostics row, VTK
+// frame, and the accuracy summary against the exact ellipse accumulated sample by sample.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sphark/run/scene.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
+
+namespace sphark {
+
+struct DropRunSummary {
+  TimeLoopResult loop;               // the run driver's outcome: status, reason, t reached, stats, ...
+  std::size_t particles = 0;
+  Real max_semi_axis_error = 0;      // max over samples of the relative semi-axis error
+  Real time_of_max_error = 0;
+  Real squeeze_error = 0;            // relative error of semi_axis_x at the first squeeze
+  Real mean_abs_div_v_time_avg = 0;  // time average of the particle mean |div v|
+  Real max_rel_density_error = 0;    // max over time
+  Real kinetic_energy_end = 0;
+  Real total_energy_drift = 0;       // (E(t_end) - E(0)) / E(0)
+  long neighbour_builds = 0;
+};
+
+class DropRun final : public SceneRun {
+ public:
+  // diagnostics_every: the sampling interval (frames follow --output-every).
+  DropRun(const WaterDropConfig& config, Real diagnostics_every, Real frame_every);
+
+  OdeSystem& system() override { return drop_.model->system(); }
+  const StateLayout& layout() const override { return drop_.model->layout(); }
+  std::vector<Real> initial_state() override { return drop_.y0; }
+  StepperOptions stepper(const CoreOptions& core, std::string_view program) override;
+  std::vector<std::string> columns() const override;
+  std::vector<Real> diagnostics(Real t, const Real* y, const StepperStats& total) override;
+  ParticleFrame frame(Real t, const Real* y) override { return drop_.model->frame(t, y); }
+  std::vector<std::pair<std::string, Real*>> saved_numbers() override;
+  void settings(TimeLoopSettings& s) override;
+
+  // The summary of the run (complete after the loop ended: pass its result).
+  DropRunSummary summary(const TimeLoopResult& result) const;
+
+ private:
+  WaterDrop drop_;
+  Real diagnostics_every_, frame_every_;
+  DropRunSummary sum_;
+  // the numbers of the accuracy summary accumulated sample by sample (saved in checkpoints)
+  Real samples_ = 0, e0_ = 0, div_integral_ = 0, t_prev_ = 0, div_prev_ = 0, prev_exact_a_ = 0, prev_err_x_ = 0,
+       squeeze_seen_ = 0;
+};
+
+// The scene parameters as "key=value" lines (a restart must not change them).
+std::string scene_text(const WaterDropConfig& c);
+
+using DropResults = std::vector<std::pair<std::string, DropRunSummary>>;
+
+// <out>/summary.csv (one row per run) and, with a cleaned and a control run, their ratios.
+void write_drop_summary(const std::filesystem::path& out, const DropResults& results);
+// Charts (paper Figs. 8-10 and the semi-axes against the exact ellipse) and rendered frames.
+// Frames were written every frame_every up to t_end.
+void make_drop_pictures(const std::filesystem::path& out, const DropResults& results, Real frame_every, Real t_end);
+
+}  // namespace sphark
