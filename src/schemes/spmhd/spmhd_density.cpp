@@ -23,8 +23,8 @@ template <int D, class K>
 void SpmhdScheme<D, K>::build_neighbours(const Real* x) {
   Real r_max = 0;
   for (std::size_t i = 0; i < n_; ++i) {
-    list_h_[i] = std::max(h_[i], want_[i]);
-    want_[i] = 0;
+    list_h_[i] = std::max(h_[i], list_h_needed_[i]);
+    list_h_needed_[i] = 0;
     radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
     r_max = std::max(r_max, radii_[i]);
   }
@@ -88,14 +88,14 @@ void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
         std::size_t short_lists = 0;
 #pragma omp parallel for schedule(static) reduction(+ : short_lists)
         for (std::size_t i = 0; i < n_; ++i) {
-          cap_[i] = (radii_[i] - 2 * disp) / K::support;
-          short_lists += h_[i] > cap_[i];
+          list_h_served_[i] = (radii_[i] - 2 * disp) / K::support;
+          short_lists += h_[i] > list_h_served_[i];
         }
         rebuild = short_lists > 0;
       }
       if (rebuild) {
         build_neighbours(x);
-        for (std::size_t i = 0; i < n_; ++i) cap_[i] = radii_[i] / K::support;
+        for (std::size_t i = 0; i < n_; ++i) list_h_served_[i] = radii_[i] / K::support;
       }
     }
     ScopedPhase timer(Phase::DensityH);
@@ -109,7 +109,7 @@ void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
 }
 
 // Solves (4)-(5) for every particle (Newton-Raphson with a bisection fallback, as
-// sphark::solve_density); h_ holds the initial guess (the previous h), cap_ the largest h the
+// sphark::solve_density); h_ holds the initial guess (the previous h), list_h_served_ the largest h the
 // lists can serve.
 template <int D, class K>
 typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x) {
@@ -129,7 +129,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
     Real* mc = rc + max_list_;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n_; ++i) {
-      const Real h_list = cap_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
+      const Real h_list = list_h_served_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
       // Candidates: every listed neighbour that any trial h <= h_list can reach, in list order.
       std::size_t nc = 0;
       for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
@@ -175,7 +175,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         density_at(h_list, r, dr);
         if (r < m_eta / std::pow(h_list, D)) {
           ++outside;
-          want_[i] = 1.5 * h_list;
+          list_h_needed_[i] = 1.5 * h_list;
         }
       }
     }

@@ -7,6 +7,8 @@
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
+#include "sphark/operators/conjugate_cleaning.hpp"
+#include "sphark/operators/pair_geometry.hpp"
 
 namespace sphark {
 
@@ -62,27 +64,27 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   rho_.assign(n_, 0);
   omega_.assign(n_, 1);
   P_.assign(n_, 0);
-  cs_.assign(n_, 0);
-  cf_.assign(n_, 0);
-  chs_.assign(n_, 0);
+  sound_speed_.assign(n_, 0);
+  fast_speed_.assign(n_, 0);
+  cleaning_speeds_.assign(n_, 0);
   B_.assign(3 * n_, 0);
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
   scratch_.assign(layout_.size(), 0);
-  hinv_.assign(n_, 0);
-  fscale_.assign(n_, 0);
-  o_.assign(n_, 0);
-  oM_.assign(D * D * n_, 0);
-  oB_.assign(3 * n_, 0);
-  opsi_.assign(n_, 0);
+  inv_h_.assign(n_, 0);
+  grad_scale_.assign(n_, 0);
+  inv_omega_rho2_.assign(n_, 0);
+  stress_over_omega_rho2_.assign(D * D * n_, 0);
+  b_over_omega_rho2_.assign(3 * n_, 0);
+  psi_over_omega_rho2_.assign(n_, 0);
   list_h_.assign(n_, 0);
-  cap_.assign(n_, 0);
-  want_.assign(n_, 0);
+  list_h_served_.assign(n_, 0);
+  list_h_needed_.assign(n_, 0);
   radii_.assign(n_, 0);
   perm_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) perm_[i] = static_cast<std::uint32_t>(i);
   ms_ = m_;
-  xg_.assign(x_.size(), 0);
+  x_from_state_.assign(x_.size(), 0);
   if (opt_.evolve_particles) {
     v_.assign(D * n_, 0);
     u_.assign(n_, 0);
@@ -112,7 +114,7 @@ std::size_t SpmhdScheme<D, K>::velocity_offset() const {
 }
 
 // Euler potentials in 2D (beta = z): B = grad alpha x z_hat = (d_y alpha, -d_x alpha, 0), with the
-// difference gradient grad alpha_a = -1/(Omega_a rho_a) sum_b m_b (alpha_a - alpha_b) grad_a W_ab(h_a)
+// difference gradient grad alpha_a = 1/(Omega_a rho_a) sum_b m_b (alpha_b - alpha_a) grad_a W_ab(h_a)
 // (Price & Bate 2007). seed 000, §II-A1.
 template <int D, class K>
 void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) {
@@ -126,9 +128,10 @@ void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) 
       const Vec<D> dx = ns_.separation(x, a, b);
       const Real r2 = dx.squaredNorm();
       if (r2 >= r2max) continue;
-      grad += ms_[b] * (alpha[a] - alpha[b]) * K::f_over_r(std::sqrt(r2), ha) * dx;
+      grad += difference_gradient_term(ms_[b], alpha[a], alpha[b],
+                                       RadialGradient<D>{K::f_over_r(std::sqrt(r2), ha), dx}).vector();
     }
-    grad *= -1.0 / (omega_[a] * rho_[a]);
+    grad *= 1.0 / (omega_[a] * rho_[a]);
     B_[3 * a + 0] = grad[1];
     B_[3 * a + 1] = -grad[0];
     B_[3 * a + 2] = 0;
@@ -150,9 +153,9 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
   if (opt_.evolve_particles) {
     // Density, h and Omega depend on the positions only: skip the solve when they are unchanged
     // (bit for bit) since the last call, e.g. max_stable_dt or stiff_diagonal after rhs.
-    gather(Field::Position, D, xg_);
-    if (!built_ || xg_ != x_) {
-      std::copy(xg_.begin(), xg_.end(), x_.begin());
+    gather(Field::Position, D, x_from_state_);
+    if (!built_ || x_from_state_ != x_) {
+      std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
       ensure_neighbours_and_density(x);
       p = perm_.data();  // a rebuild renumbers the slots
     }
@@ -175,15 +178,15 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
 #pragma omp parallel for schedule(static) reduction(max : cmax)
   for (std::size_t a = 0; a < n_; ++a) {
     P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
-    cs_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
     const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
-    cf_[a] = std::sqrt(cs_[a] * cs_[a] + b2 / rho_[a]);  // fast magnetosonic speed (upper bound)
-    cmax = std::max(cmax, cf_[a]);
+    fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);  // fast magnetosonic speed (upper bound)
+    cmax = std::max(cmax, fast_speed_[a]);
   }
-  ch_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
+  cleaning_speed_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
   for (std::size_t a = 0; a < n_; ++a)
-    chs_[a] = opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cf_[a]) : ch_;
-  if (!std::isfinite(ch_)) {
+    cleaning_speeds_[a] = opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
+  if (!std::isfinite(cleaning_speed_)) {
     error_ = "non-finite wave speed";
     return 1;
   }
@@ -224,7 +227,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexce
   std::fill(c, c + layout_.size(), 0.0);
   if (!has_stiff_diagonal()) return 0;
   Real* cpsi = c + layout_.offset(Field::Psi);
-  for (std::size_t a = 0; a < n_; ++a) cpsi[perm_[a]] = opt_.sigma * chs_[a] / h_[a];  // 1/tau_a
+  for (std::size_t a = 0; a < n_; ++a) cpsi[perm_[a]] = opt_.sigma * cleaning_speeds_[a] / h_[a];  // 1/tau_a
   return 0;
 }
 
@@ -238,7 +241,7 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
   const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t a = 0; a < n_; ++a) {
-    Real vsig = std::max(chs_[a], cf_[a]);
+    Real vsig = std::max(cleaning_speeds_[a], fast_speed_[a]);
     if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
   }
