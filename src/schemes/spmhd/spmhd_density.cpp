@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "sphark/core/profile.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
 #include "sphark/schemes/spmhd/unit_kernel.hpp"
@@ -189,8 +190,9 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real*);                  \
   template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*);
-SPHARK_SPMHD_DENSITY(2, CubicSpline<2>)
-SPHARK_SPMHD_DENSITY(3, CubicSpline<3>)
+#define SPHARK_SPMHD_DENSITY_2D_3D(K) SPHARK_SPMHD_DENSITY(2, K<2>) SPHARK_SPMHD_DENSITY(3, K<3>)
+SPHARK_KERNELS(SPHARK_SPMHD_DENSITY_2D_3D)
+#undef SPHARK_SPMHD_DENSITY_2D_3D
 #undef SPHARK_SPMHD_DENSITY
 
 }  // namespace sphark

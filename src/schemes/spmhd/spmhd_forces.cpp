@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "sphark/core/profile.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/conjugate_cleaning.hpp"
 #include "sphark/operators/mhd_operators.hpp"
 #include "sphark/operators/pair_geometry.hpp"
@@ -223,8 +224,9 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
 #define SPHARK_SPMHD_FORCES(D, K)                                                 \
   template void SpmhdScheme<D, K>::pair_loop_arrays(const Real*);                 \
   template void SpmhdScheme<D, K>::force_pass(const Real*, Real*);
-SPHARK_SPMHD_FORCES(2, CubicSpline<2>)
-SPHARK_SPMHD_FORCES(3, CubicSpline<3>)
+#define SPHARK_SPMHD_FORCES_2D_3D(K) SPHARK_SPMHD_FORCES(2, K<2>) SPHARK_SPMHD_FORCES(3, K<3>)
+SPHARK_KERNELS(SPHARK_SPMHD_FORCES_2D_3D)
+#undef SPHARK_SPMHD_FORCES_2D_3D
 #undef SPHARK_SPMHD_FORCES
 
 }  // namespace sphark

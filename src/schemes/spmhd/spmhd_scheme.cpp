@@ -7,6 +7,7 @@
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/conjugate_cleaning.hpp"
 #include "sphark/operators/pair_geometry.hpp"
 
@@ -248,7 +249,10 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
   return dt;
 }
 
-template class SpmhdScheme<2, CubicSpline<2>>;
-template class SpmhdScheme<3, CubicSpline<3>>;
+#define SPHARK_SPMHD_SCHEME(K) \
+  template class SpmhdScheme<2, K<2>>;  \
+  template class SpmhdScheme<3, K<3>>;
+SPHARK_KERNELS(SPHARK_SPMHD_SCHEME)
+#undef SPHARK_SPMHD_SCHEME
 
 }  // namespace sphark
