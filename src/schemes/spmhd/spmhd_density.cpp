@@ -169,15 +169,9 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       rho_[i] = r;
       omega_[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)
       h_max = std::max(h_max, hh);
-      // Root beyond what the lists serve? The iteration cannot leave [0, h_list]: near h_list it
-      // converges onto h_list itself (to the tolerance) when the root lies beyond. f increases
-      // with h, so the root is beyond h_list exactly when f(h_list) < 0.
-      if (hh > h_list * (1 - 1e-6)) {
-        density_at(h_list, r, dr);
-        if (r < m_eta / std::pow(h_list, D)) {
-          ++outside;
-          list_h_needed_[i] = 1.5 * h_list;
-        }
+      if (root_beyond_list<D>(density_at, hh, h_list, m_eta, tol)) {
+        ++outside;
+        list_h_needed_[i] = 1.5 * h_list;
       }
     }
   }
