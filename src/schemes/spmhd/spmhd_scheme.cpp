@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
@@ -234,16 +236,22 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexce
 
 template <int D, class K>
 Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y) noexcept {
+  constexpr Real failed = std::numeric_limits<Real>::quiet_NaN();  // documented in the header
   try {
-    if (prepare(y) != 0) return 0;
-  } catch (const std::exception&) {
-    return 0;
+    if (prepare(y) != 0) return failed;  // error_ says why
+  } catch (...) {
+    error_ = current_exception_message("SpmhdScheme::max_stable_dt");
+    return failed;
   }
   const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t a = 0; a < n_; ++a) {
     Real vsig = std::max(cleaning_speeds_[a], fast_speed_[a]);
     if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
+    if (!std::isfinite(vsig) || !std::isfinite(fast_speed_[a]) || !std::isfinite(h_[a])) {
+      error_ = "max_stable_dt: non-finite signal speed or h at particle " + std::to_string(perm_[a]);
+      return failed;
+    }
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
   }
   return dt;
