@@ -17,15 +17,6 @@ namespace {
 
 using test::LatticeCase;
 
-SpmhdOptions full_options() {
-  SpmhdOptions o;
-  o.alpha_b = 1.0;
-  o.cleaning = Cleaning::Constrained;
-  o.sigma = 0;
-  o.subtract_monopole_force = false;
-  return o;
-}
-
 template <class K>
 struct Case3D {
   SpmhdScheme<3, K> scheme;
@@ -43,14 +34,14 @@ using Kernels3D = ::testing::Types<CubicSpline<3>, WendlandC2<3>>;
 TYPED_TEST_SUITE(Spmhd3D, Kernels3D);
 
 TYPED_TEST(Spmhd3D, MomentumToRoundOffWithoutMonopoleSubtraction) {
-  Case3D<TypeParam> c(full_options(), LatticeCase{});
+  Case3D<TypeParam> c(test::conserving_options(), LatticeCase{});
   const auto [total, scale] = test::momentum_rate(c.scheme, c.ydot);
   ASSERT_GT(scale, 0);
   EXPECT_LT(total.norm(), 1e-14 * scale) << total.transpose();
 }
 
 TYPED_TEST(Spmhd3D, TotalEnergyToRoundOff) {
-  Case3D<TypeParam> c(full_options(), LatticeCase{});
+  Case3D<TypeParam> c(test::conserving_options(), LatticeCase{});
   const test::EnergyRate e = test::energy_rate(c.scheme, c.y, c.ydot);
   ASSERT_GT(e.scale, 0);
   EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;

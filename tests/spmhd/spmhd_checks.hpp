@@ -11,6 +11,17 @@
 
 namespace sphark::test {
 
+// Every term that conserves energy on (viscosity, conductivity, resistivity, constrained cleaning
+// without damping), and not the (9) term (which does not conserve momentum).
+inline SpmhdOptions conserving_options() {
+  SpmhdOptions o;
+  o.alpha_b = 1.0;
+  o.cleaning = Cleaning::Constrained;
+  o.sigma = 0;
+  o.subtract_monopole_force = false;
+  return o;
+}
+
 // sum_a m_a dv_a/dt and its scale sum_a m_a |dv_a/dt|.
 template <int D, class K>
 std::pair<Vec<D>, Real> momentum_rate(const SpmhdScheme<D, K>& s, const std::vector<Real>& ydot) {

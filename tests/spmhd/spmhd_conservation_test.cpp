@@ -55,24 +55,15 @@ struct PeriodicCase {
   }
 };
 
-SpmhdOptions full_options() {
-  SpmhdOptions o;
-  o.alpha_b = 1.0;
-  o.cleaning = Cleaning::Constrained;
-  o.sigma = 0;
-  o.subtract_monopole_force = false;
-  return o;
-}
-
 TEST(SpmhdConservation, MomentumToRoundOffWithoutMonopoleSubtraction) {
-  PeriodicCase c(full_options());
+  PeriodicCase c(test::conserving_options());
   const auto [total, scale] = test::momentum_rate(c.scheme, c.ydot);
   ASSERT_GT(scale, 0);
   EXPECT_LT(total.norm(), 1e-14 * scale) << total.transpose();
 }
 
 TEST(SpmhdConservation, MonopoleSubtractionBreaksMomentumConservation) {
-  SpmhdOptions o = full_options();
+  SpmhdOptions o = test::conserving_options();
   o.subtract_monopole_force = true;
   PeriodicCase c(o);
   const auto [total, scale] = test::momentum_rate(c.scheme, c.ydot);
@@ -80,7 +71,7 @@ TEST(SpmhdConservation, MonopoleSubtractionBreaksMomentumConservation) {
 }
 
 TEST(SpmhdConservation, TotalEnergyToRoundOff) {
-  PeriodicCase c(full_options());
+  PeriodicCase c(test::conserving_options());
   const test::EnergyRate e = test::energy_rate(c.scheme, c.y, c.ydot);
   ASSERT_GT(e.scale, 0);
   EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;
