@@ -63,7 +63,8 @@ void check_force_antisymmetric_and_momentum() {
       const Vec<D> f_ab = mhd::maxwell_force_term(1.0, stress(c, a, c.B[a]), ab.g_a, stress(c, b, c.B[b]), ab.g_b);
       const Vec<D> f_ba = mhd::maxwell_force_term(1.0, stress(c, b, c.B[b]), ba.g_a, stress(c, a, c.B[a]), ba.g_b);
       EXPECT_EQ(f_ab, Vec<D>(-f_ba));  // per unit mass product: antisymmetric bit for bit
-      const Vec<D> f = c.m[a] * mhd::maxwell_force_term(c.m[b], stress(c, a, c.B[a]), ab.g_a, stress(c, b, c.B[b]), ab.g_b);
+      const Vec<D> f =
+          c.m[a] * mhd::maxwell_force_term(c.m[b], stress(c, a, c.B[a]), ab.g_a, stress(c, b, c.B[b]), ab.g_b);
       total += f;
       scale += f.norm();
     }
@@ -201,7 +202,8 @@ TEST(MhdTerms, Eq25BalancesTheDensityChangeOfThePsiEnergy) {
   for (std::size_t a = 0; a < c.size(); ++a) {
     const Real c2 = 1.7, continuity = 0.3 + c.u[a], m = c.m[a], rho = c.rho[a], psi = c.psi[a];
     const Real dpsi = mhd::psi_rate(c2, 0, psi, false, 0, true, 1 / (c.omega[a] * rho), continuity);
-    const Real gain = m * psi * dpsi / (rho * c2), loss = m * psi * psi / (2 * rho * rho * c2) * continuity / c.omega[a];
+    const Real gain = m * psi * dpsi / (rho * c2);
+    const Real loss = m * psi * psi / (2 * rho * rho * c2) * continuity / c.omega[a];
     EXPECT_NEAR(gain, loss, 1e-15 * std::abs(loss)) << a;
   }
 }

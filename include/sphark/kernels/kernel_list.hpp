@@ -50,7 +50,8 @@ struct KernelTag {
 // The command-line names (K::name) of the kernels, in list order.
 template <int D>
 std::vector<std::string> kernel_names() {
-  return []<class... K>(KernelTypes<K...>) { return std::vector<std::string>{std::string(K::name)...}; }(KernelList<D>{});
+  auto names = []<class... K>(KernelTypes<K...>) { return std::vector<std::string>{std::string(K::name)...}; };
+  return names(KernelList<D>{});
 }
 
 namespace kernel_detail {

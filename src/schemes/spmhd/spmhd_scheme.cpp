@@ -183,12 +183,14 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
     sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
     const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
-    fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);  // fast magnetosonic speed (upper bound)
+    // fast magnetosonic speed (upper bound)
+    fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);
     cmax = std::max(cmax, fast_speed_[a]);
   }
   cleaning_speed_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
   for (std::size_t a = 0; a < n_; ++a)
-    cleaning_speeds_[a] = opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
+    cleaning_speeds_[a] =
+        opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
   if (!std::isfinite(cleaning_speed_)) {
     error_ = "non-finite wave speed";
     return 1;

@@ -86,7 +86,9 @@ class SpmhdScheme final : public OdeSystem {
   const std::vector<Real>& magnetic_field() const { return in_particle_order(B_, 3, out_B_); }  // 3 x N
   const std::vector<Real>& positions() const { return in_particle_order(x_, D, out_x_); }  // D x N (fixed, or last state)
   Real cleaning_speed() const { return cleaning_speed_; }  // global c_h (the largest if local_ch)
-  const std::vector<Real>& cleaning_speeds() const { return in_particle_order(cleaning_speeds_, 1, out_cleaning_speeds_); }  // c_h,a
+  const std::vector<Real>& cleaning_speeds() const {  // c_h,a
+    return in_particle_order(cleaning_speeds_, 1, out_cleaning_speeds_);
+  }
 
   // rhs() into an internal buffer, to refresh the per-particle quantities above.
   int evaluate(Real t, const Real* y) noexcept;
@@ -119,7 +121,8 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> permute_scratch_;
   std::vector<Real> x_from_state_, v_, u_, psi_, alpha_;  // inputs gathered from the state (slot order)
   long version_ = 0;                                      // bumped by every prepare()
-  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_, out_cleaning_speeds_;
+  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_,
+      out_cleaning_speeds_;
   SpmhdOptions opt_;
   StateLayout layout_;
   NeighbourSearch<D> ns_;
