@@ -50,7 +50,7 @@ std::pair<Real, Real> eq22_sides(const Cluster<D>& c, GradPsi form, Real& scale)
       div += difference_divergence_term(c.m[b], c.B[a].template head<D>(), c.B[b].template head<D>(), p.g_a);
       if (form == GradPsi::Symmetric) grad += symmetric_gradient_term(c.m[b], q_a, p.g_a, q_b, p.g_b);
       if (form == GradPsi::SymmetricRadial)
-        grad += symmetric_gradient_term(c.m[b], q_a, p.radial_a, q_b, p.radial_b).vector();
+        grad += symmetric_gradient_term(c.m[b], q_a, p.radial_a(), q_b, p.radial_b()).vector();
       if (form == GradPsi::Difference) grad += difference_gradient_term(c.m[b], c.psi[a], c.psi[b], p.g_a);
     }
     const Real inv_omega_rho = 1 / (c.omega[a] * c.rho[a]);

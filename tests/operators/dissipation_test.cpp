@@ -26,7 +26,7 @@ template <int D, class K>
 DissipationPair<D> dissipation_pair(const Cluster<D>& c, std::size_t a, std::size_t b) {
   const auto p = test::pair_of<K>(c, a, b);
   const Vec<D> rhat = p.x_ab / p.r;
-  return {rhat, (c.v[a] - c.v[b]).dot(rhat), 0.5 * (p.radial_a.factor + p.radial_b.factor) * p.r,
+  return {rhat, (c.v[a] - c.v[b]).dot(rhat), 0.5 * (p.F_a + p.F_b) * p.r,
           1 / (0.5 * (c.rho[a] + c.rho[b]))};
 }
 

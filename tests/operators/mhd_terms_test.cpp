@@ -164,7 +164,7 @@ void check_resistivity_conserves_field_and_energy() {
       if (a == b) continue;
       const auto p = test::pair_of<K>(c, a, b);
       const Vec<D> v_ab = c.v[a] - c.v[b], rhat = p.x_ab / p.r;
-      const Real rhat_dot_gbar = 0.5 * (p.radial_a.factor + p.radial_b.factor) * p.r;
+      const Real rhat_dot_gbar = 0.5 * (p.F_a + p.F_b) * p.r;
       const Real inv_rho_ab = 1 / (0.5 * (c.rho[a] + c.rho[b]));
       const mhd::ResistivePairTerm t = mhd::resistivity_term<D>(c.m[b], alpha_b, v_ab, v_ab.dot(rhat), rhat, inv_rho_ab,
                                                                 Vec3(c.B[a] - c.B[b]), rhat_dot_gbar);

@@ -49,14 +49,15 @@ Cluster<D> random_cluster(std::size_t n, unsigned seed) {
   return c;
 }
 
-// The pair (a, b), a != b: x_ab = x_a - x_b, g_a = grad_a W_ab(h_a), g_b = grad_a W_ab(h_b), and the
-// same gradients as RadialGradient (factor and x_ab).
+// The pair (a, b), a != b: x_ab = x_a - x_b, g_a = grad_a W_ab(h_a) = F_a x_ab,
+// g_b = grad_a W_ab(h_b) = F_b x_ab; radial_a() and radial_b(): the same as RadialGradient.
 template <int D>
 struct Pair {
   Vec<D> x_ab;
-  Real r;
+  Real r, F_a, F_b;
   Vec<D> g_a, g_b;
-  RadialGradient<D> radial_a, radial_b;
+  RadialGradient<D> radial_a() const { return {F_a, x_ab}; }
+  RadialGradient<D> radial_b() const { return {F_b, x_ab}; }
 };
 
 template <class K, int D>
@@ -64,11 +65,10 @@ Pair<D> pair_of(const Cluster<D>& c, std::size_t a, std::size_t b) {
   Pair<D> p;
   p.x_ab = c.x[a] - c.x[b];
   p.r = p.x_ab.norm();
-  const Real F_a = K::f_over_r(p.r, c.h[a]), F_b = K::f_over_r(p.r, c.h[b]);
-  p.g_a = F_a * p.x_ab;
-  p.g_b = F_b * p.x_ab;
-  p.radial_a = {F_a, p.x_ab};
-  p.radial_b = {F_b, p.x_ab};
+  p.F_a = K::f_over_r(p.r, c.h[a]);
+  p.F_b = K::f_over_r(p.r, c.h[b]);
+  p.g_a = p.F_a * p.x_ab;
+  p.g_b = p.F_b * p.x_ab;
   return p;
 }
 

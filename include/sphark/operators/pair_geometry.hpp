@@ -23,10 +23,11 @@ inline PairGeometry<D> pair_geometry(const Vec<D>& x_ab, Real h) {
 // e.g. m (q_a grad_a W_ab(h_a) + q_b grad_a W_ab(h_b)), computes (m (q_a F_a + q_b F_b)) x_ab:
 // the scalars are combined first, then one product with x_ab (fewer operations, other rounding
 // than with the gradients as vectors).
+// (x_ab is referred to, not copied: a RadialGradient lives as long as the pair's x_ab.)
 template <int D>
 struct RadialGradient {
   Real factor;
-  Vec<D> x_ab;
+  const Vec<D>& x_ab;
   Vec<D> vector() const { return factor * x_ab; }
 };
 
