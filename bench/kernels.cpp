@@ -1,11 +1,11 @@
-// Kernel evaluation: W and (dW/dr)/r of every kernel over q in [0, support) (2D and 3D), ns
+// Kernel evaluation: W and (dW/dr)/r of every kernel of the list over q in [0, support) (2D and 3D), ns
 // per evaluation (one W plus one f_over_r).
 //   build/bin/bench_kernels
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
-#include "sphark/kernels/kernels.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 
 using namespace sphark;
 
@@ -27,11 +27,6 @@ void BM_Kernel(benchmark::State& state) {
 }
 }  // namespace
 
-BENCHMARK(BM_Kernel<CubicSpline<2>>);
-BENCHMARK(BM_Kernel<QuinticSpline<2>>);
-BENCHMARK(BM_Kernel<WendlandC2<2>>);
-BENCHMARK(BM_Kernel<WendlandC4<2>>);
-BENCHMARK(BM_Kernel<WendlandC6<2>>);
-BENCHMARK(BM_Kernel<CubicSpline<3>>);
-BENCHMARK(BM_Kernel<WendlandC2<3>>);
+#define SPHARK_KERNEL_BENCHMARKS(K) BENCHMARK(BM_Kernel<K<2>>); BENCHMARK(BM_Kernel<K<3>>);
+SPHARK_KERNELS(SPHARK_KERNEL_BENCHMARKS)
 BENCHMARK_MAIN();

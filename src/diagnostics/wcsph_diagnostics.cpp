@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sphark/kernels/kernels.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/tait_eos.hpp"
 
 namespace sphark {
@@ -61,17 +61,12 @@ ParticleFrame WcsphFrame::build(WcsphSystem<D, Kernel>& system, Real t, const Re
   return f;
 }
 
-#define SPHARK_WCSPH_DIAGNOSTICS(D, K)                                                          \
-  template WcsphDiagnostics<D> wcsph_diagnostics(WcsphSystem<D, K>&, Real, const Real*);      \
-  template ParticleFrame WcsphFrame::build(WcsphSystem<D, K>&, Real, const Real*);
-SPHARK_WCSPH_DIAGNOSTICS(2, CubicSpline<2>)
-SPHARK_WCSPH_DIAGNOSTICS(2, QuinticSpline<2>)
-SPHARK_WCSPH_DIAGNOSTICS(2, WendlandC2<2>)
-SPHARK_WCSPH_DIAGNOSTICS(2, WendlandC4<2>)
-SPHARK_WCSPH_DIAGNOSTICS(2, WendlandC6<2>)
-SPHARK_WCSPH_DIAGNOSTICS(3, CubicSpline<3>)
-SPHARK_WCSPH_DIAGNOSTICS(3, WendlandC2<3>)
-SPHARK_WCSPH_DIAGNOSTICS(3, WendlandC4<3>)
+#define SPHARK_WCSPH_DIAGNOSTICS_D(D, K)                                                   \
+  template WcsphDiagnostics<D> wcsph_diagnostics(WcsphSystem<D, K<D>>&, Real, const Real*); \
+  template ParticleFrame WcsphFrame::build(WcsphSystem<D, K<D>>&, Real, const Real*);
+#define SPHARK_WCSPH_DIAGNOSTICS(K) SPHARK_WCSPH_DIAGNOSTICS_D(2, K) SPHARK_WCSPH_DIAGNOSTICS_D(3, K)
+SPHARK_KERNELS(SPHARK_WCSPH_DIAGNOSTICS)
+#undef SPHARK_WCSPH_DIAGNOSTICS_D
 #undef SPHARK_WCSPH_DIAGNOSTICS
 
 }  // namespace sphark

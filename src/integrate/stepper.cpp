@@ -15,13 +15,15 @@
 namespace sphark {
 namespace {
 
-std::string num(Real x) {
+// x as printed by an ostream (shortest usual form, e.g. "1e-06"), for option error messages.
+std::string number_text(Real x) {
   std::ostringstream s;
   s << x;
   return s.str();
 }
 
-[[noreturn]] void bad(const std::string& option, const std::string& value, const std::string& why) {
+// Throws std::invalid_argument "option=value: why".
+[[noreturn]] void reject_option(const std::string& option, const std::string& value, const std::string& why) {
   throw std::invalid_argument(option + "=" + value + ": " + why);
 }
 
@@ -32,28 +34,28 @@ bool is_erk(const std::string& method) {
 
 void validate_common(const OdeSystem& system, const StepperOptions& o) {
   const std::size_t n = system.size();
-  if (!(o.rtol > 0)) bad("rtol", num(o.rtol), "must be > 0");
+  if (!(o.rtol > 0)) reject_option("rtol", number_text(o.rtol), "must be > 0");
   if (!o.atol.empty() && o.atol.size() != 1 && o.atol.size() != n)
-    bad("atol", std::to_string(o.atol.size()) + " values",
+    reject_option("atol", std::to_string(o.atol.size()) + " values",
         "give one value or one per state entry (" + std::to_string(n) + ")");
   for (Real a : o.atol)
-    if (!(a >= 0)) bad("atol", num(a), "must be >= 0");
-  if (!(o.fixed_dt >= 0)) bad("fixed_dt", num(o.fixed_dt), "must be >= 0");
-  if (!(o.max_dt >= 0)) bad("max_dt", num(o.max_dt), "must be >= 0");
-  if (!(o.min_dt >= 0)) bad("min_dt", num(o.min_dt), "must be >= 0");
-  if (!(o.initial_dt >= 0)) bad("initial_dt", num(o.initial_dt), "must be >= 0");
-  if (!(o.cfl_safety > 0)) bad("cfl_safety", num(o.cfl_safety), "must be > 0");
-  if (o.max_steps <= 0) bad("max_steps", std::to_string(o.max_steps), "must be > 0");
+    if (!(a >= 0)) reject_option("atol", number_text(a), "must be >= 0");
+  if (!(o.fixed_dt >= 0)) reject_option("fixed_dt", number_text(o.fixed_dt), "must be >= 0");
+  if (!(o.max_dt >= 0)) reject_option("max_dt", number_text(o.max_dt), "must be >= 0");
+  if (!(o.min_dt >= 0)) reject_option("min_dt", number_text(o.min_dt), "must be >= 0");
+  if (!(o.initial_dt >= 0)) reject_option("initial_dt", number_text(o.initial_dt), "must be >= 0");
+  if (!(o.cfl_safety > 0)) reject_option("cfl_safety", number_text(o.cfl_safety), "must be > 0");
+  if (o.max_steps <= 0) reject_option("max_steps", std::to_string(o.max_steps), "must be > 0");
 }
 
 void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, const Real* y0) {
   const std::size_t n = system.size(), np = system.position_size();
   const std::size_t xp = system.position_offset(), vp = system.velocity_offset();
-  if (np == 0) bad("method", o.method, "the system declares no position block (position_size() == 0)");
+  if (np == 0) reject_option("method", o.method, "the system declares no position block (position_size() == 0)");
   if (xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np))
-    bad("method", o.method, "position/velocity blocks overlap or exceed the state size");
+    reject_option("method", o.method, "position/velocity blocks overlap or exceed the state size");
   const bool bounded = o.fixed_dt > 0 || o.max_dt > 0 || std::isfinite(system.max_stable_dt(t0, y0, nullptr));
-  if (!bounded) bad("method", o.method, "needs fixed_dt, max_dt or a finite system max_stable_dt");
+  if (!bounded) reject_option("method", o.method, "needs fixed_dt, max_dt or a finite system max_stable_dt");
 }
 
 // A stepper together with the guard it integrates through (one guard per run, see
@@ -81,16 +83,16 @@ std::unique_ptr<Stepper> make_unguarded_stepper(OdeSystem& system, const Stepper
   }
   if (opts.method == "ark-imex") {
     if (!system.has_stiff_diagonal())
-      bad("method", opts.method, "the system has no stiff diagonal part (use an ERK table)");
+      reject_option("method", opts.method, "the system has no stiff diagonal part (use an ERK table)");
     if (!detail::is_imex_pair(opts.imex_table))
-      bad("imex_table", opts.imex_table,
+      reject_option("imex_table", opts.imex_table,
           "unknown ARK pair (ARK324L2SA, ARK436L2SA, ARK437L2SA, ARK548L2SA, ARK548L2SAb)");
     return detail::make_imex_stepper(system, opts, t0, y0);
   }
   if (!is_erk(opts.method))
-    bad("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
+    reject_option("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
   if (opts.fixed_dt <= 0 && !erk_table_has_embedding(opts.method))
-    bad("method", opts.method, "table has no embedding: adaptive steps impossible, set fixed_dt");
+    reject_option("method", opts.method, "table has no embedding: adaptive steps impossible, set fixed_dt");
   return detail::make_erk_stepper(system, opts, t0, y0);
 }
 

@@ -63,8 +63,8 @@ TEST(FatalFailure, ErkReportsReason) { expect_fatal("ARKODE_DORMAND_PRINCE_7_4_5
 TEST(FatalFailure, ImexReportsReason) { expect_fatal("ark-imex", false); }
 TEST(FatalFailure, LeapfrogReportsReason) { expect_fatal("leapfrog", false); }
 
-// OdeSystem::rhs is noexcept (a throw there terminates), but everything else a C callback calls
-// is guarded: here last_error() throws while a failure is being recorded.
+// Everything a C callback calls is guarded: here last_error() throws while a failure is being
+// recorded.
 TEST(Exceptions, NoExceptionEscapesACallback) {
   for (const char* method : {"ARKODE_DORMAND_PRINCE_7_4_5", "ark-imex", "leapfrog"}) expect_fatal(method, true);
 }
@@ -146,6 +146,33 @@ TEST(StableStepFailure, NaNStopsAdaptiveAndLeapfrogRuns) {
     EXPECT_LT(t, 0.6);
     EXPECT_TRUE(contains(stepper->failure_reason(), "max_stable_dt")) << stepper->failure_reason();
     EXPECT_TRUE(contains(stepper->failure_reason(), "no sound speed")) << stepper->failure_reason();
+  }
+}
+}  // namespace sphark::test
+
+namespace sphark::test {
+namespace {
+// rhs() throws from t = 0.5 on: a scheme need not catch, the stepper's net does (the one net).
+struct ThrowingOscillator : Oscillator {
+  int rhs(Real t, const Real* y, Real* ydot) override {
+    if (t >= 0.5) throw std::runtime_error("neighbour build failed");
+    return Oscillator::rhs(t, y, ydot);
+  }
+  bool has_stiff_diagonal() const override { return true; }
+  int stiff_diagonal(Real, const Real*, Real* c) override { return c[0] = c[1] = 0, 0; }
+};
+}  // namespace
+
+TEST(Exceptions, AThrowingRhsEndsTheRunAsAFatalFailureWithItsMessage) {
+  for (const char* method : {"ARKODE_DORMAND_PRINCE_7_4_5", "ark-imex", "leapfrog"}) {
+    SCOPED_TRACE(method);
+    ThrowingOscillator sys;
+    const Real y0[2] = {1, 0};
+    auto stepper = make_stepper(sys, options(method, 1e-6, std::string(method) == "leapfrog" ? 0.01 : 0.0), 0, y0);
+    Real y[2], t = 0;
+    EXPECT_EQ(stepper->advance(1.0, y, t), AdvanceStatus::Failed);
+    EXPECT_LT(t, 0.5);
+    EXPECT_TRUE(contains(stepper->failure_reason(), "neighbour build failed")) << stepper->failure_reason();
   }
 }
 }  // namespace sphark::test

@@ -36,7 +36,7 @@ TEST(Roots, FallingBallImex) {
   // The falling ball has no stiff part; give it a zero one so that ark-imex accepts it.
   struct ZeroStiff : FallingBall {
     bool has_stiff_diagonal() const override { return true; }
-    int stiff_diagonal(Real, const Real*, Real* c) noexcept override { return c[0] = c[1] = 0, 0; }
+    int stiff_diagonal(Real, const Real*, Real* c) override { return c[0] = c[1] = 0, 0; }
   };
   ZeroStiff sys;
   const Real y0[2] = {1, 0};

@@ -16,7 +16,7 @@ class Kepler : public OdeSystem {
  public:
   explicit Kepler(Real e) : e_(e) {}
   std::size_t size() const override { return 4; }
-  int rhs(Real, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real, const Real* y, Real* ydot) override {
     const Real r = std::hypot(y[0], y[1]), r3 = r * r * r;
     ydot[0] = y[2];
     ydot[1] = y[3];
@@ -44,7 +44,7 @@ class DampedWithEnergy : public OdeSystem {
  public:
   explicit DampedWithEnergy(Real g) : g_(g) {}
   std::size_t size() const override { return 3; }
-  int rhs(Real, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real, const Real* y, Real* ydot) override {
     ydot[0] = y[1];
     ydot[1] = -y[0] - g_ * y[1];
     ydot[2] = -g_ * y[1] * y[1];
@@ -68,7 +68,7 @@ class DampedWithEnergy : public OdeSystem {
 class Oscillator : public OdeSystem {
  public:
   std::size_t size() const override { return 2; }
-  int rhs(Real, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real, const Real* y, Real* ydot) override {
     ydot[0] = y[1];
     ydot[1] = -y[0];
     return 0;
@@ -81,7 +81,7 @@ class Oscillator : public OdeSystem {
 // x'' = -1 from x = 1 at rest; root g = x at t = sqrt(2).
 class FallingBall : public Oscillator {
  public:
-  int rhs(Real, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real, const Real* y, Real* ydot) override {
     ydot[0] = y[1];
     ydot[1] = -1;
     return 0;
@@ -99,13 +99,13 @@ class StiffRelaxation : public OdeSystem {
   explicit StiffRelaxation(std::vector<Real> c, bool forcing = true)
       : c_(std::move(c)), forcing_(forcing) {}
   std::size_t size() const override { return c_.size(); }
-  int rhs(Real t, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real t, const Real* y, Real* ydot) override {
     for (std::size_t k = 0; k < c_.size(); ++k)
       ydot[k] = -c_[k] * y[k] + (forcing_ ? c_[k] * std::cos(t) - std::sin(t) : 0.0);
     return 0;
   }
   bool has_stiff_diagonal() const override { return true; }
-  int stiff_diagonal(Real, const Real*, Real* c) noexcept override {
+  int stiff_diagonal(Real, const Real*, Real* c) override {
     for (std::size_t k = 0; k < c_.size(); ++k) c[k] = c_[k];
     return 0;
   }
@@ -122,12 +122,12 @@ class DampedOscillator : public Oscillator {
  public:
   explicit DampedOscillator(Real c) : c_(c) {}
   std::size_t size() const override { return 3; }
-  int rhs(Real t, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real t, const Real* y, Real* ydot) override {
     ydot[2] = y[0] - c_ * y[2];
     return Oscillator::rhs(t, y, ydot);
   }
   bool has_stiff_diagonal() const override { return true; }
-  int stiff_diagonal(Real, const Real*, Real* c) noexcept override {
+  int stiff_diagonal(Real, const Real*, Real* c) override {
     c[0] = c[1] = 0;
     c[2] = c_;
     return 0;
@@ -143,14 +143,14 @@ class DampedOscillator : public Oscillator {
 class JumpLimitedOscillator : public Oscillator {
  public:
   explicit JumpLimitedOscillator(Real jump) : jump_(jump) {}
-  int rhs(Real t, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real t, const Real* y, Real* ydot) override {
     if (t > t_ok_ + jump_) return 1;
     t_ok_ = std::max(t_ok_, t);
     return Oscillator::rhs(t, y, ydot);
   }
   std::string last_error() const override { return "stage jumped beyond the skin"; }
   bool has_stiff_diagonal() const override { return true; }
-  int stiff_diagonal(Real, const Real*, Real* c) noexcept override {
+  int stiff_diagonal(Real, const Real*, Real* c) override {
     c[0] = c[1] = 0;
     return 0;
   }
@@ -165,7 +165,7 @@ class FailingOscillator : public JumpLimitedOscillator {
  public:
   FailingOscillator(Real t_fail, bool throwing_reason)
       : JumpLimitedOscillator(1e300), t_fail_(t_fail), throwing_(throwing_reason) {}
-  int rhs(Real t, const Real* y, Real* ydot) noexcept override {
+  int rhs(Real t, const Real* y, Real* ydot) override {
     return t > t_fail_ ? -1 : Oscillator::rhs(t, y, ydot);
   }
   std::string last_error() const override {

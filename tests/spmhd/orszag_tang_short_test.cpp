@@ -1,7 +1,7 @@
 // A short Orszag-Tang run (seed 000, §IV-B) on a coarse lattice through the leapfrog stepper:
 // beta0 = 10/3 in the set-up; momentum conserved to round-off without the (9) term; total
 // energy conserved to the time-stepping error; the constrained cleaning lowers the mean
-// h|div B|/|B| against no control at the same time.
+// h|div B|/|B| against no control at the same time, by at least the measured ratio's floor.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,15 +64,26 @@ TEST(SpmhdOrszagTang, ShortRunConservesMomentumAndEnergy) {
   EXPECT_LT(de, 1e-3);
 }
 
+// docs/spmhd.md reports the ratio mean h|div B|/|B| (none) / (cleaning) at t = 1 on 128 x 148
+// (12.8 with c_h = the fast speed, 37 with the example's 8 x); this short run measures the same
+// ratio at t = 0.2 on 24 x 28 and asserts its floor. Measured (deterministic: independent of the
+// thread count): none 0.0348635; cleaning (c_h = fast speed) 0.0265634, ratio 1.312;
+// cleaning with overclean 8: 0.00699694, ratio 4.983. Floors: 1.3 and 4.9.
 TEST(SpmhdOrszagTang, CleaningLowersTheDivergenceError) {
   SpmhdOptions none;
   SpmhdOptions cleaning;
   cleaning.cleaning = Cleaning::Constrained;
-  const ShortRun a = run_short(none, 0.2), b = run_short(cleaning, 0.2);
+  SpmhdOptions overcleaning = cleaning;
+  overcleaning.overclean = 8;  // examples/orszag_tang's default
+  const ShortRun a = run_short(none, 0.2), b = run_short(cleaning, 0.2), c = run_short(overcleaning, 0.2);
+  const Real ratio = a.end.mean_h_divb_over_b / b.end.mean_h_divb_over_b;
+  const Real ratio8 = a.end.mean_h_divb_over_b / c.end.mean_h_divb_over_b;
   std::cout << "mean h|div B|/|B| at t = 0.2: none " << a.end.mean_h_divb_over_b << ", cleaning "
-            << b.end.mean_h_divb_over_b << "\n";
+            << b.end.mean_h_divb_over_b << " (ratio " << ratio << "), overclean 8 " << c.end.mean_h_divb_over_b
+            << " (ratio " << ratio8 << ")\n";
   EXPECT_GT(a.end.mean_h_divb_over_b, 0);
-  EXPECT_LT(b.end.mean_h_divb_over_b, a.end.mean_h_divb_over_b);
+  EXPECT_GT(ratio, 1.3);
+  EXPECT_GT(ratio8, 4.9);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "spmhd_checks.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/diagnostics/spmhd_diagnostics.hpp"
 #include "sphark/scenes/orszag_tang/orszag_tang.hpp"
@@ -54,72 +55,26 @@ struct PeriodicCase {
   }
 };
 
-SpmhdOptions full_options() {
-  SpmhdOptions o;
-  o.alpha_b = 1.0;
-  o.cleaning = Cleaning::Constrained;
-  o.sigma = 0;
-  o.subtract_monopole_force = false;
-  return o;
-}
-
-// Total momentum rate sum_a m_a dv_a/dt and its scale sum_a m_a |dv_a/dt|.
-template <class Case>
-std::pair<Eigen::Vector2d, Real> momentum_rate(const Case& c) {
-  const auto dv = vector_field<2>(c.ydot.data(), c.scheme.layout(), Field::Velocity);
-  Eigen::Vector2d total = Eigen::Vector2d::Zero();
-  Real scale = 0;
-  for (std::size_t a = 0; a < c.p.size(); ++a) {
-    total += c.p.m[a] * dv.col(a);
-    scale += c.p.m[a] * dv.col(a).norm();
-  }
-  return {total, scale};
-}
-
 TEST(SpmhdConservation, MomentumToRoundOffWithoutMonopoleSubtraction) {
-  PeriodicCase c(full_options());
-  const auto [total, scale] = momentum_rate(c);
+  PeriodicCase c(test::conserving_options());
+  const auto [total, scale] = test::momentum_rate(c.scheme, c.ydot);
   ASSERT_GT(scale, 0);
   EXPECT_LT(total.norm(), 1e-14 * scale) << total.transpose();
 }
 
 TEST(SpmhdConservation, MonopoleSubtractionBreaksMomentumConservation) {
-  SpmhdOptions o = full_options();
+  SpmhdOptions o = test::conserving_options();
   o.subtract_monopole_force = true;
   PeriodicCase c(o);
-  const auto [total, scale] = momentum_rate(c);
+  const auto [total, scale] = test::momentum_rate(c.scheme, c.ydot);
   EXPECT_GT(total.norm(), 1e-6 * scale);  // the -B(div B) force is not antisymmetric
 }
 
 TEST(SpmhdConservation, TotalEnergyToRoundOff) {
-  PeriodicCase c(full_options());
-  const StateLayout& L = c.scheme.layout();
-  auto v = vector_field<2>(c.y.data(), L, Field::Velocity);
-  auto dv = vector_field<2>(c.ydot.data(), L, Field::Velocity);
-  auto du = scalar_field(c.ydot.data(), L, Field::InternalEnergy);
-  auto B = vector_field<3>(c.y.data(), L, Field::MagneticField);
-  auto dB = vector_field<3>(c.ydot.data(), L, Field::MagneticField);
-  auto psi = scalar_field(c.y.data(), L, Field::Psi);
-  auto dpsi = scalar_field(c.ydot.data(), L, Field::Psi);
-  const Real ch2 = c.scheme.cleaning_speed() * c.scheme.cleaning_speed();
-  // E = sum m (v^2/2 + u + B^2/(2 rho) + psi^2/(2 rho c_h^2)), with the time derivative of the
-  // summation density (4) at variable h: drho_a/dt = (1/Omega_a) sum_b m_b v_ab . grad_a W_ab(h_a)
-  // = -rho_a div v_a (the continuity form of eq. (25)).
-  std::vector<Real> drho(c.p.size());
-  for (std::size_t a = 0; a < c.p.size(); ++a) drho[a] = -c.scheme.rho()[a] * c.scheme.div_v()[a];
-  Real rate = 0, scale = 0;
-  for (std::size_t a = 0; a < c.p.size(); ++a) {
-    const Real m = c.p.m[a], rho = c.scheme.rho()[a];
-    const Real terms[] = {m * v.col(a).dot(dv.col(a)), m * du(a), m * B.col(a).dot(dB.col(a)) / rho,
-                          -m * B.col(a).squaredNorm() / (2 * rho * rho) * drho[a],
-                          m * psi(a) * dpsi(a) / (rho * ch2), -m * psi(a) * psi(a) / (2 * rho * rho * ch2) * drho[a]};
-    for (Real t : terms) {
-      rate += t;
-      scale += std::abs(t);
-    }
-  }
-  ASSERT_GT(scale, 0);
-  EXPECT_LT(std::abs(rate), 1e-14 * scale) << "dE/dt = " << rate << ", scale " << scale;
+  PeriodicCase c(test::conserving_options());
+  const test::EnergyRate e = test::energy_rate(c.scheme, c.y, c.ydot);
+  ASSERT_GT(e.scale, 0);
+  EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;
 }
 
 TEST(SpmhdConservation, DivBVanishesForUniformField) {

@@ -2,9 +2,14 @@
 // compact support, and dW/dr against central finite differences, for every kernel in 1-3D.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
 
-#include "sphark/kernels/kernels.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 
 using namespace sphark;
 
@@ -46,20 +51,36 @@ void check_kernel() {
 }
 }  // namespace
 
+template <int D, class... K>
+void check_kernels(KernelTypes<K...>) {
+  (check_kernel<K, D>(), ...);
+}
+
 TEST(Kernels, NormalisedWithCompactSupportAndConsistentDerivative) {
-  check_kernel<CubicSpline<1>, 1>();
-  check_kernel<CubicSpline<2>, 2>();
-  check_kernel<CubicSpline<3>, 3>();
-  check_kernel<QuinticSpline<1>, 1>();
-  check_kernel<QuinticSpline<2>, 2>();
-  check_kernel<QuinticSpline<3>, 3>();
-  check_kernel<WendlandC2<1>, 1>();
-  check_kernel<WendlandC2<2>, 2>();
-  check_kernel<WendlandC2<3>, 3>();
-  check_kernel<WendlandC4<1>, 1>();
-  check_kernel<WendlandC4<2>, 2>();
-  check_kernel<WendlandC4<3>, 3>();
-  check_kernel<WendlandC6<1>, 1>();
-  check_kernel<WendlandC6<2>, 2>();
-  check_kernel<WendlandC6<3>, 3>();
+  check_kernels<1>(KernelList<1>{});
+  check_kernels<2>(KernelList<2>{});
+  check_kernels<3>(KernelList<3>{});
+}
+
+// The run-time choice by name reaches every kernel of the list, each under its own name, and
+// rejects an unknown name with the list of known ones.
+TEST(KernelList, EveryNameSelectsItsKernel) {
+  const std::vector<std::string> names = kernel_names<2>();
+  ASSERT_EQ(names.size(), KernelList<2>::size);
+  for (const std::string& name : names) {
+    EXPECT_EQ(std::count(names.begin(), names.end(), name), 1) << name;
+    const std::string_view chosen = with_kernel<2>(name, [](auto tag) { return decltype(tag)::type::name; });
+    EXPECT_EQ(chosen, name);
+  }
+  EXPECT_EQ(kernel_names<3>(), names);
+  EXPECT_TRUE(with_kernel<2>("cubic", [](auto tag) { return std::is_same_v<typename decltype(tag)::type, CubicSpline<2>>; }));
+  EXPECT_TRUE(
+      with_kernel<3>("wendland_c4", [](auto tag) { return std::is_same_v<typename decltype(tag)::type, WendlandC4<3>>; }));
+  try {
+    with_kernel<2>("no_such_kernel", [](auto) { return 0; });
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_kernel"), std::string::npos);
+    for (const std::string& name : names) EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << name;
+  }
 }

@@ -1,7 +1,6 @@
 #pragma once
-// Error reporting of the noexcept OdeSystem callbacks (rhs, prepare, ...): no exception may cross
-// a SUNDIALS C callback, so every callback catches and returns a code (integrate/ode_system.hpp:
-// 0 ok, > 0 recoverable, < 0 fatal) with a message for last_error().
+// The message of the exception being handled, for the places that turn exceptions into failure
+// codes (the steppers at the C boundary, a scheme's diagnostics path): integrate/ode_system.hpp.
 #include <cmath>
 #include <cstddef>
 #include <exception>
@@ -20,17 +19,6 @@ inline std::string current_exception_message(const std::string& who) noexcept {
   } catch (...) {
     return who + ": unknown exception";
   }
-}
-
-// 0 if ydot[0..n) is finite; else 1 (recoverable: the stepper retries with a smaller step) and
-// `error` names the first non-finite entry.
-inline int check_finite_rhs(const Real* ydot, std::size_t n, std::string& error) noexcept {
-  for (std::size_t k = 0; k < n; ++k)
-    if (!std::isfinite(ydot[k])) {
-      error = "non-finite right-hand side entry " + std::to_string(k);
-      return 1;
-    }
-  return 0;
 }
 
 }  // namespace sphark

@@ -7,10 +7,14 @@
 //   symmetric gradient      grad psi_a / rho_a = sum_b m_b ( psi_a/(Omega_a rho_a^2) grad_a W_ab(h_a)
 //                                                          + psi_b/(Omega_b rho_b^2) grad_a W_ab(h_b) )
 //                                                           seed 000, eq. (23) (B) and eq. (39) (v)
+//   difference gradient     grad f_a = 1/(Omega_a rho_a) sum_b m_b (f_b - f_a) grad_a W_ab(h_a)
+//                           (NOT the conjugate of the divergence: the previous, non-conservative
+//                           choice for grad psi, seed 000 §I; also grad alpha of Euler potentials)
 //
 // These are adjoint to each other under the energy inner products of eqs. (21)/(37), which is why
 // the cleaning subsystem conserves energy exactly when both are used together. The pair terms
-// below are the summands; callers accumulate them over the neighbour list.
+// below are the summands; callers accumulate them over the neighbour list. Gradients may be
+// vectors or RadialGradient (pair_geometry.hpp): the formula is the same, written once.
 #include "sphark/core/types.hpp"
 
 namespace sphark {
@@ -28,6 +32,12 @@ inline Real difference_divergence_term(Real m_b, const VA& A_a, const VB& A_b, c
 template <class G>
 inline G symmetric_gradient_term(Real m_b, Real q_a, const G& grad_w_a, Real q_b, const G& grad_w_b) {
   return m_b * (q_a * grad_w_a + q_b * grad_w_b);
+}
+// Summand of the difference gradient: m_b (f_b - f_a) grad_a W_ab(h_a).
+// grad f_a = (1 / (Omega_a rho_a)) * sum of these.
+template <class G>
+inline G difference_gradient_term(Real m_b, Real f_a, Real f_b, const G& grad_w_a) {
+  return m_b * (f_b - f_a) * grad_w_a;
 }
 
 }  // namespace sphark

@@ -78,6 +78,20 @@ Real solve_smoothing_length(Sums&& sums, Real h_start, Real h_list, Real m_eta, 
   return hh;
 }
 
+// After solve_smoothing_length returned h_found: does the root of f(h) = rho(h) - m (eta/h)^D lie
+// beyond h_list (the lists must then serve a larger h)? The iteration cannot leave (0, h_list]:
+// when the root lies beyond, it converges onto h_list itself (to within about tol). f increases
+// with h, so the root lies beyond exactly when f(h_list) < 0; that sum is evaluated only when
+// h_found is that close to h_list (within max(1e-6, 10 tol), relative). The one criterion of
+// every density solve (solve_density below, the SPMHD scheme).
+template <int D, class Sums>
+bool root_beyond_list(Sums&& sums, Real h_found, Real h_list, Real m_eta, Real tol) {
+  if (!(h_found > h_list * (1 - std::max(1e-6, 10 * tol)))) return false;
+  Real rho = 0, drho_dh = 0;
+  sums(h_list, rho, drho_dh);
+  return rho < m_eta / std::pow(h_list, D);  // f(h_list) < 0, seed 000 eq. (5)
+}
+
 // Solves (4)-(5) for every particle. h is the initial guess on input (e.g. the previous h).
 // h_list: the largest h the lists can serve (ns.radius() / K::support for fresh lists; less when
 // particles moved since the build).
@@ -122,9 +136,7 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
     Real hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations);
     Real r = 0;
     if (!converged) ++not_converged;
-    // A root beyond h_list makes the Newton/bisection iterate converge onto h_list from below
-    // (to within tol); count that as outside the lists so the caller rebuilds them.
-    if (i < n_checked && hh >= h_list * (1 - 10 * tol)) ++outside;
+    if (i < n_checked && root_beyond_list<D>(sums, hh, h_list, m_eta, tol)) ++outside;
     Real dr;
     sums(hh, r, dr);
     h[i] = hh;

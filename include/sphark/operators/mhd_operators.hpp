@@ -1,11 +1,13 @@
 #pragma once
-// Pair terms of the SPMHD operators (seed 000, §II). Each function returns the contribution of
-// neighbour b to a sum over b for particle a, so that the caller's gather loop reads like the
-// equation. B is always 3 components (the 2D disc test has B_z); kernel gradients g are padded
-// to 3 components with zeros beyond D.
+// The SPMHD operators of seed 000, §II, in the shape of a pair loop: what each particle needs
+// before the loop (init), the summand a neighbour b contributes (pair), and what closes the sum
+// (finish). The SPMHD scheme (src/schemes/spmhd/spmhd_forces.cpp) calls exactly these; the
+// conjugate cleaning pair (20)/(23) is shared with WCSPH (conjugate_cleaning.hpp), the artificial
+// viscosity and conductivity live in signal_velocity_dissipation.hpp.
 //
-// Notation: g_a = grad_a W_ab(h_a), g_b = grad_a W_ab(h_b) (both along x_a - x_b), m = m_b,
-// "oa" = 1 / (Omega_a rho_a^2), "ob" = 1 / (Omega_b rho_b^2).
+// Notation: g_a = grad_a W_ab(h_a), g_b = grad_a W_ab(h_b) (both along x_ab = x_a - x_b; the
+// acceleration and the gradients have D components, B always 3), m_b the neighbour's mass,
+// o_a = 1 / (Omega_a rho_a^2). mu0 = 1.
 #include <Eigen/Core>
 
 #include "sphark/core/types.hpp"
@@ -13,44 +15,79 @@
 namespace sphark::mhd {
 
 using Vec3 = Eigen::Matrix<Real, 3, 1>;
-using Mat3 = Eigen::Matrix<Real, 3, 3>;
 
-// Maxwell stress, seed 000, eq. (8), mu0 = 1:  M = B B^T - (P + B^2/2) I.
-inline Mat3 maxwell_stress(const Vec3& B, Real P) {
-  return B * B.transpose() - (P + 0.5 * B.squaredNorm()) * Mat3::Identity();
+// init, seed 000, eq. (8) times o_a: the D x D block of M_a / (Omega_a rho_a^2),
+//   M = B B^T - (P + B^2/2) I,
+// written to S[D * i + j] (symmetric, so row- and column-major alike).
+template <int D>
+inline void maxwell_stress_over_omega_rho2(const Real* B, Real P, Real o_a, Real* S) {
+  const Real p_total = P + 0.5 * (B[0] * B[0] + B[1] * B[1] + B[2] * B[2]);
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) S[D * i + j] = o_a * (B[i] * B[j] - (i == j ? p_total : 0.0));
 }
 
-// Momentum, seed 000, eq. (6):  m_b [ M_a/(Omega_a rho_a^2) . g_a + M_b/(Omega_b rho_b^2) . g_b ].
-inline Vec3 momentum_pair(Real m, const Mat3& Ma, Real oa, const Vec3& ga, const Mat3& Mb, Real ob, const Vec3& gb) {
-  return m * (oa * (Ma * ga) + ob * (Mb * gb));
+// pair, seed 000, eq. (6): dv_a/dt = sum_b m_b [ S_a g_a + S_b g_b ],  S = M / (Omega rho^2).
+template <class SA, class SB, class G>
+inline G maxwell_force_term(Real m_b, const SA& S_a, const G& g_a, const SB& S_b, const G& g_b) {
+  return m_b * (S_a * g_a + S_b * g_b);
 }
 
-// The B(div B) subtraction, seed 000, eq. (9): the scalar part of the sum
-// m_b [ B_a/(Omega_a rho_a^2) . g_a + B_b/(Omega_b rho_b^2) . g_b ]  (multiplied by -B_a outside).
-inline Real monopole_pair(Real m, const Vec3& Ba, Real oa, const Vec3& ga, const Vec3& Bb, Real ob, const Vec3& gb) {
-  return m * (oa * Ba.dot(ga) + ob * Bb.dot(gb));
+// pair, seed 000, eq. (9) (the tensile-instability correction): the sum
+//   sum_b m_b [ (o_a B_a) . g_a + (o_b B_b) . g_b ],
+// the symmetric divergence of B that (6) contains; finish: dv_a/dt -= B_a * sum.
+template <class BA, class BB, class G>
+inline Real monopole_term(Real m_b, const BA& oB_a, const G& g_a, const BB& oB_b, const G& g_b) {
+  return m_b * (oB_a.dot(g_a) + oB_b.dot(g_b));
+}
+template <int D, class Acc>
+inline void subtract_monopole_force(Acc& dv_dt, const Vec3& B_a, Real monopole_sum) {
+  dv_dt -= B_a.template head<D>() * monopole_sum;
 }
 
-// Induction, seed 000, eq. (7): m_b [ v_ab (B_a . g_a) - B_a (v_ab . g_a) ]  (times -1/(Omega_a rho_a)).
-inline Vec3 induction_pair(Real m, const Vec3& vab, const Vec3& Ba, const Vec3& ga) {
-  return m * (vab * Ba.dot(ga) - Ba * vab.dot(ga));
+// seed 000, eq. (7): dB_a/dt = -1/(Omega_a rho_a) sum_b m_b [ v_ab (B_a . g_a) - B_a (v_ab . g_a) ].
+// (The two parts are added to the sum one after the other.)
+template <int D>
+struct Induction {
+  Vec3 sum = Vec3::Zero();  // init
+  void pair(Real m_b, const Vec<D>& v_ab, const Vec3& B_a, const Vec<D>& g_a) {
+    sum.template head<D>() += m_b * B_a.template head<D>().dot(g_a) * v_ab;
+    sum -= m_b * v_ab.dot(g_a) * B_a;
+  }
+  Vec3 finish(Real inv_omega_rho) const { return -inv_omega_rho * sum; }
+};
+
+// seed 000, eq. (10), artificial resistivity, with rho_ab^2 (Price & Monaghan 2005; the square
+// is lost in the seed's typesetting: the printed form is not dimensionally a dB/dt):
+//   dB_a/dt = rho_a sum_b m_b alpha_B v_sig^B / rho_ab^2 (B_a - B_b) rhat . gbar,
+//   du_a/dt = -1/2 sum_b m_b alpha_B v_sig^B / rho_ab^2 |B_a - B_b|^2 rhat . gbar  (heating >= 0),
+// with v_sig^B = |v_ab x rhat| = |v_ab - w_ab rhat| (Price et al. 2018, Phantom; the fast speed of
+// Price & Monaghan (2005) removes most of the Orszag-Tang field by t = 0.5 at 64^2 particles).
+// gbar = (g_a + g_b)/2, rhat_dot_gbar = rhat . gbar < 0, w_ab = v_ab . rhat.
+struct ResistivePairTerm {
+  Vec3 dB_dt;  // summand of the sum (times rho_a at finish)
+  Real du_dt;  // summand of du_a/dt
+};
+template <int D>
+inline ResistivePairTerm resistivity_term(Real m_b, Real alpha_b, const Vec<D>& v_ab, Real w_ab, const Vec<D>& rhat,
+                                             Real inv_rho_ab, const Vec3& B_ab, Real rhat_dot_gbar) {
+  const Real v_sig_b = (v_ab - w_ab * rhat).norm();
+  const Real k = m_b * alpha_b * v_sig_b * inv_rho_ab * inv_rho_ab * rhat_dot_gbar;
+  return {k * B_ab, -(0.5 * k * B_ab.squaredNorm())};
 }
 
-// The difference divergence (20) and the symmetric gradient (23) are the generic conjugate pair
-// of sphark/operators/conjugate_cleaning.hpp (difference_divergence_term, symmetric_gradient_term).
-
-// Difference gradient (the previous, non-conservative choice for grad psi):
-// m_b (psi_b - psi_a) g_a  (times 1/(Omega_a rho_a)). Not the conjugate of (20): breaks (21).
-inline Vec3 difference_gradient_pair(Real m, Real psi_a, Real psi_b, const Vec3& ga) {
-  return m * (psi_b - psi_a) * ga;
-}
-
-// Artificial resistivity, seed 000, eq. (10) (with rho_ab^2, as in Price & Monaghan 2005; the
-// square is lost in the seed's typesetting — the printed form is not dimensionally a dB/dt):
-// m_b alpha_B v_sig / rho_ab^2 (B_a - B_b) rhat . grad W  (times rho_a).
-// rhat_dot_g is rhat . (g_a + g_b)/2 < 0; the matching heating is -1/2 m_b ... |B_a - B_b|^2.
-inline Vec3 resistivity_pair(Real m, Real alpha_vsig, Real rho_ab, const Vec3& Bab, Real rhat_dot_g) {
-  return m * alpha_vsig / (rho_ab * rho_ab) * rhat_dot_g * Bab;
+// finish, seed 000, eq. (19) with (25): the psi evolution
+//   dpsi_a/dt = -c_h^2 (div B)_a - psi_a / tau_a - psi_a (div v)_a / 2,
+//   -psi_a (div v)_a / 2 = psi_a / (2 Omega_a rho_a) sum_b m_b v_ab . g_a      (25)
+// damped: with 1/tau_a = damping_rate = sigma c_h / h_a; continuity_term: with (25), where
+// continuity_sum = sum_b m_b v_ab . g_a (not for fixed particles nor the non-conservative form).
+// With a per-particle c_h the state is psi/c_h (Tricco, Price & Bate 2016) and ch_factor = c_h,a
+// instead of c_h^2.
+inline Real psi_rate(Real ch_factor, Real div_b, Real psi, bool damped, Real damping_rate, bool continuity_term,
+                     Real inv_omega_rho, Real continuity_sum) {
+  Real rate = -ch_factor * div_b;
+  if (damped) rate -= damping_rate * psi;
+  if (continuity_term) rate += 0.5 * psi * inv_omega_rho * continuity_sum;
+  return rate;
 }
 
 }  // namespace sphark::mhd

@@ -17,4 +17,29 @@ inline PairGeometry<D> pair_geometry(const Vec<D>& x_ab, Real h) {
   return {x_ab, r, Kernel::f_over_r(r, h) * x_ab};
 }
 
+// A kernel gradient grad_a W_ab(h) = F x_ab with F = (dW/dr)/r, kept as the factor F and the
+// pair separation x_ab. Scaling and adding gradients of ONE pair (grad_a W_ab(h_a) and
+// grad_a W_ab(h_b) share x_ab) stays in this form, so that an operator written once for vectors,
+// e.g. m (q_a grad_a W_ab(h_a) + q_b grad_a W_ab(h_b)), computes (m (q_a F_a + q_b F_b)) x_ab:
+// the scalars are combined first, then one product with x_ab (fewer operations, other rounding
+// than with the gradients as vectors).
+// (x_ab is referred to, not copied: a RadialGradient lives as long as the pair's x_ab.)
+template <int D>
+struct RadialGradient {
+  Real factor;
+  const Vec<D>& x_ab;
+  Vec<D> vector() const { return factor * x_ab; }
+};
+
+template <int D>
+inline RadialGradient<D> operator*(Real s, const RadialGradient<D>& g) {
+  return {s * g.factor, g.x_ab};
+}
+
+// Both gradients must belong to the same pair (same x_ab).
+template <int D>
+inline RadialGradient<D> operator+(const RadialGradient<D>& g1, const RadialGradient<D>& g2) {
+  return {g1.factor + g2.factor, g1.x_ab};
+}
+
 }  // namespace sphark

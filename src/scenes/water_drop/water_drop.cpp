@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "sphark/initial/lattice_2d.hpp"
-#include "sphark/kernels/kernels.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/tait_eos.hpp"
 
 namespace sphark {
@@ -41,12 +41,9 @@ class WcsphModelOf final : public WcsphModel {
 };
 
 std::unique_ptr<WcsphModel> make_model(const std::string& kernel, std::size_t n, WcsphParams<2> p) {
-  if (kernel == CubicSpline<2>::name) return std::make_unique<WcsphModelOf<CubicSpline<2>>>(n, std::move(p));
-  if (kernel == QuinticSpline<2>::name) return std::make_unique<WcsphModelOf<QuinticSpline<2>>>(n, std::move(p));
-  if (kernel == WendlandC2<2>::name) return std::make_unique<WcsphModelOf<WendlandC2<2>>>(n, std::move(p));
-  if (kernel == WendlandC4<2>::name) return std::make_unique<WcsphModelOf<WendlandC4<2>>>(n, std::move(p));
-  if (kernel == WendlandC6<2>::name) return std::make_unique<WcsphModelOf<WendlandC6<2>>>(n, std::move(p));
-  throw std::invalid_argument("unknown kernel '" + kernel + "'");
+  return with_kernel<2>(kernel, [&](auto tag) -> std::unique_ptr<WcsphModel> {
+    return std::make_unique<WcsphModelOf<typename decltype(tag)::type>>(n, std::move(p));
+  });
 }
 
 void require_positive(Real v, const char* what) {
@@ -65,10 +62,7 @@ std::vector<Real> water_drop_absolute_tolerances(const WaterDrop& drop, Real ato
                              atol);
 }
 
-std::vector<std::string> wcsph_kernel_names() {
-  return {std::string(CubicSpline<2>::name), std::string(QuinticSpline<2>::name), std::string(WendlandC2<2>::name),
-          std::string(WendlandC4<2>::name), std::string(WendlandC6<2>::name)};
-}
+std::vector<std::string> wcsph_kernel_names() { return kernel_names<2>(); }
 
 WaterDrop make_water_drop(const WaterDropConfig& cfg) {
   require_positive(cfg.radius, "radius");

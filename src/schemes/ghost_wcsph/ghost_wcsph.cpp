@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <variant>
 
-#include "sphark/kernels/kernels.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/artificial_viscosity.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/operators/tait_eos.hpp"
@@ -246,10 +246,8 @@ int GhostWcsph<K>::roots(Real /*t*/, const Real* y, Real* g) {
   return 0;
 }
 
-template class GhostWcsph<CubicSpline<2>>;
-template class GhostWcsph<QuinticSpline<2>>;
-template class GhostWcsph<WendlandC2<2>>;
-template class GhostWcsph<WendlandC4<2>>;
-template class GhostWcsph<WendlandC6<2>>;
+#define SPHARK_GHOST_WCSPH(K) template class GhostWcsph<K<2>>;
+SPHARK_KERNELS(SPHARK_GHOST_WCSPH)
+#undef SPHARK_GHOST_WCSPH
 
 }  // namespace sphark

@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "sphark/core/profile.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
 #include "sphark/schemes/spmhd/unit_kernel.hpp"
@@ -20,14 +21,20 @@
 namespace sphark {
 
 template <int D, class K>
-void SpmhdScheme<D, K>::build_neighbours(const Real* x) {
+int SpmhdScheme<D, K>::build_neighbours(const Real* x) {
   Real r_max = 0;
   for (std::size_t i = 0; i < n_; ++i) {
-    list_h_[i] = std::max(h_[i], want_[i]);
-    want_[i] = 0;
+    list_h_[i] = std::max(h_[i], list_h_needed_[i]);
+    list_h_needed_[i] = 0;
     radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
     r_max = std::max(r_max, radii_[i]);
   }
+  if (const auto& box = ns_.box())  // the minimum image needs 2 r < the period: h has grown too far
+    for (int k = 0; k < D; ++k)
+      if (box->periodic[k] && 2 * r_max > box->hi[k] - box->lo[k]) {
+        error_ = "smoothing length grew beyond half the periodic box (list radius " + std::to_string(r_max) + ")";
+        return 1;
+      }
   ns_.build(x, n_, r_max, perm_.data(), radii_.data());  // rows sorted by particle index
   built_ = true;
   ++builds_;
@@ -36,6 +43,7 @@ void SpmhdScheme<D, K>::build_neighbours(const Real* x) {
   for (std::size_t i = 0; i < n_; ++i) longest = std::max(longest, L.count(i));
   max_list_ = longest;
   sort_slots_by_cell();
+  return 0;
 }
 
 // Renumbers the slots in the cell order of the fresh lists; the per-slot data that outlives this
@@ -67,7 +75,7 @@ void SpmhdScheme<D, K>::sort_slots_by_cell() {
 // support * max(h_a, h_b)) is listed when both h are within their caps. Rebuild when some h
 // (the guess: the previous h) exceeds its cap, or when the density solve reports an h beyond.
 template <int D, class K>
-void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
+int SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
   if (h_[0] <= 0) {
     Vec<D> lo = Eigen::Map<const Vec<D>>(x), hi = lo;
     for (std::size_t i = 1; i < n_; ++i) {
@@ -88,28 +96,30 @@ void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
         std::size_t short_lists = 0;
 #pragma omp parallel for schedule(static) reduction(+ : short_lists)
         for (std::size_t i = 0; i < n_; ++i) {
-          cap_[i] = (radii_[i] - 2 * disp) / K::support;
-          short_lists += h_[i] > cap_[i];
+          list_h_served_[i] = (radii_[i] - 2 * disp) / K::support;
+          short_lists += h_[i] > list_h_served_[i];
         }
         rebuild = short_lists > 0;
       }
       if (rebuild) {
-        build_neighbours(x);
-        for (std::size_t i = 0; i < n_; ++i) cap_[i] = radii_[i] / K::support;
+        if (const int rc = build_neighbours(x)) return rc;
+        for (std::size_t i = 0; i < n_; ++i) list_h_served_[i] = radii_[i] / K::support;
       }
     }
     ScopedPhase timer(Phase::DensityH);
     const DensityStats st = solve_density(x);
     if (st.outside_list == 0) {
-      if (st.not_converged > 0) throw std::runtime_error("density: h iteration did not converge");
-      return;
+      if (st.not_converged == 0) return 0;
+      error_ = "density: h iteration did not converge for " + std::to_string(st.not_converged) + " particle(s)";
+      return 1;  // recoverable: a smaller step moves the particles less
     }
   }
-  throw std::runtime_error("density: smoothing lengths keep growing beyond the neighbour lists");
+  error_ = "density: smoothing lengths keep growing beyond the neighbour lists";
+  return 1;
 }
 
 // Solves (4)-(5) for every particle (Newton-Raphson with a bisection fallback, as
-// sphark::solve_density); h_ holds the initial guess (the previous h), cap_ the largest h the
+// sphark::solve_density); h_ holds the initial guess (the previous h), list_h_served_ the largest h the
 // lists can serve.
 template <int D, class K>
 typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x) {
@@ -129,7 +139,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
     Real* mc = rc + max_list_;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n_; ++i) {
-      const Real h_list = cap_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
+      const Real h_list = list_h_served_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
       // Candidates: every listed neighbour that any trial h <= h_list can reach, in list order.
       std::size_t nc = 0;
       for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
@@ -168,15 +178,9 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       rho_[i] = r;
       omega_[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)
       h_max = std::max(h_max, hh);
-      // Root beyond what the lists serve? The iteration cannot leave [0, h_list]: near h_list it
-      // converges onto h_list itself (to the tolerance) when the root lies beyond. f increases
-      // with h, so the root is beyond h_list exactly when f(h_list) < 0.
-      if (hh > h_list * (1 - 1e-6)) {
-        density_at(h_list, r, dr);
-        if (r < m_eta / std::pow(h_list, D)) {
-          ++outside;
-          want_[i] = 1.5 * h_list;
-        }
+      if (root_beyond_list<D>(density_at, hh, h_list, m_eta, tol)) {
+        ++outside;
+        list_h_needed_[i] = 1.5 * h_list;
       }
     }
   }
@@ -185,12 +189,13 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
 }
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
-  template void SpmhdScheme<D, K>::build_neighbours(const Real*);                               \
+  template int SpmhdScheme<D, K>::build_neighbours(const Real*);                               \
   template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
-  template void SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real*);                  \
+  template int SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real*);                  \
   template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*);
-SPHARK_SPMHD_DENSITY(2, CubicSpline<2>)
-SPHARK_SPMHD_DENSITY(3, CubicSpline<3>)
+#define SPHARK_SPMHD_DENSITY_2D_3D(K) SPHARK_SPMHD_DENSITY(2, K<2>) SPHARK_SPMHD_DENSITY(3, K<3>)
+SPHARK_KERNELS(SPHARK_SPMHD_DENSITY_2D_3D)
+#undef SPHARK_SPMHD_DENSITY_2D_3D
 #undef SPHARK_SPMHD_DENSITY
 
 }  // namespace sphark

@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
+#include "sphark/kernels/kernel_list.hpp"
+#include "sphark/operators/conjugate_cleaning.hpp"
+#include "sphark/operators/pair_geometry.hpp"
 
 namespace sphark {
 
@@ -62,27 +67,27 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   rho_.assign(n_, 0);
   omega_.assign(n_, 1);
   P_.assign(n_, 0);
-  cs_.assign(n_, 0);
-  cf_.assign(n_, 0);
-  chs_.assign(n_, 0);
+  sound_speed_.assign(n_, 0);
+  fast_speed_.assign(n_, 0);
+  cleaning_speeds_.assign(n_, 0);
   B_.assign(3 * n_, 0);
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
   scratch_.assign(layout_.size(), 0);
-  hinv_.assign(n_, 0);
-  fscale_.assign(n_, 0);
-  o_.assign(n_, 0);
-  oM_.assign(D * D * n_, 0);
-  oB_.assign(3 * n_, 0);
-  opsi_.assign(n_, 0);
+  inv_h_.assign(n_, 0);
+  grad_scale_.assign(n_, 0);
+  inv_omega_rho2_.assign(n_, 0);
+  stress_over_omega_rho2_.assign(D * D * n_, 0);
+  b_over_omega_rho2_.assign(3 * n_, 0);
+  psi_over_omega_rho2_.assign(n_, 0);
   list_h_.assign(n_, 0);
-  cap_.assign(n_, 0);
-  want_.assign(n_, 0);
+  list_h_served_.assign(n_, 0);
+  list_h_needed_.assign(n_, 0);
   radii_.assign(n_, 0);
   perm_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) perm_[i] = static_cast<std::uint32_t>(i);
   ms_ = m_;
-  xg_.assign(x_.size(), 0);
+  x_from_state_.assign(x_.size(), 0);
   if (opt_.evolve_particles) {
     v_.assign(D * n_, 0);
     u_.assign(n_, 0);
@@ -112,7 +117,7 @@ std::size_t SpmhdScheme<D, K>::velocity_offset() const {
 }
 
 // Euler potentials in 2D (beta = z): B = grad alpha x z_hat = (d_y alpha, -d_x alpha, 0), with the
-// difference gradient grad alpha_a = -1/(Omega_a rho_a) sum_b m_b (alpha_a - alpha_b) grad_a W_ab(h_a)
+// difference gradient grad alpha_a = 1/(Omega_a rho_a) sum_b m_b (alpha_b - alpha_a) grad_a W_ab(h_a)
 // (Price & Bate 2007). seed 000, §II-A1.
 template <int D, class K>
 void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) {
@@ -126,9 +131,10 @@ void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) 
       const Vec<D> dx = ns_.separation(x, a, b);
       const Real r2 = dx.squaredNorm();
       if (r2 >= r2max) continue;
-      grad += ms_[b] * (alpha[a] - alpha[b]) * K::f_over_r(std::sqrt(r2), ha) * dx;
+      grad += difference_gradient_term(ms_[b], alpha[a], alpha[b],
+                                       RadialGradient<D>{K::f_over_r(std::sqrt(r2), ha), dx}).vector();
     }
-    grad *= -1.0 / (omega_[a] * rho_[a]);
+    grad *= 1.0 / (omega_[a] * rho_[a]);
     B_[3 * a + 0] = grad[1];
     B_[3 * a + 1] = -grad[0];
     B_[3 * a + 2] = 0;
@@ -150,16 +156,19 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
   if (opt_.evolve_particles) {
     // Density, h and Omega depend on the positions only: skip the solve when they are unchanged
     // (bit for bit) since the last call, e.g. max_stable_dt or stiff_diagonal after rhs.
-    gather(Field::Position, D, xg_);
-    if (!built_ || xg_ != x_) {
-      std::copy(xg_.begin(), xg_.end(), x_.begin());
-      ensure_neighbours_and_density(x);
+    gather(Field::Position, D, x_from_state_);
+    if (!built_ || x_from_state_ != x_) {
+      std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
+      if (const int rc = ensure_neighbours_and_density(x)) {
+        built_ = false;  // x_ is not what the lists and h were made for
+        return rc;
+      }
       p = perm_.data();  // a rebuild renumbers the slots
     }
     gather(Field::Velocity, D, v_);
     gather(Field::InternalEnergy, 1, u_);
   } else if (!built_) {
-    ensure_neighbours_and_density(x);
+    if (const int rc = ensure_neighbours_and_density(x)) return rc;
     p = perm_.data();
   }
   if (!psi_.empty()) gather(Field::Psi, 1, psi_);
@@ -175,15 +184,17 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
 #pragma omp parallel for schedule(static) reduction(max : cmax)
   for (std::size_t a = 0; a < n_; ++a) {
     P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
-    cs_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
     const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
-    cf_[a] = std::sqrt(cs_[a] * cs_[a] + b2 / rho_[a]);  // fast magnetosonic speed (upper bound)
-    cmax = std::max(cmax, cf_[a]);
+    // fast magnetosonic speed (upper bound)
+    fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);
+    cmax = std::max(cmax, fast_speed_[a]);
   }
-  ch_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
+  cleaning_speed_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
   for (std::size_t a = 0; a < n_; ++a)
-    chs_[a] = opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cf_[a]) : ch_;
-  if (!std::isfinite(ch_)) {
+    cleaning_speeds_[a] =
+        opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
+  if (!std::isfinite(cleaning_speed_)) {
     error_ = "non-finite wave speed";
     return 1;
   }
@@ -191,16 +202,11 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
 }
 
 template <int D, class K>
-int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) noexcept {
+int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) {  // may throw: the stepper's net catches
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
-  try {
-    if (const int rc = prepare(y); rc != 0) return rc;
-    force_pass(y, ydot);
-  } catch (...) {
-    error_ = current_exception_message("SpmhdScheme");
-    return 1;
-  }
+  if (const int rc = prepare(y); rc != 0) return rc;
+  force_pass(y, ydot);
   return 0;
 }
 
@@ -209,7 +215,13 @@ int SpmhdScheme<D, K>::evaluate(Real t, const Real* y) noexcept {
   // y evaluated last (no rhs() or prepare() since): every per-particle array is already y's
   if (evaluated_version_ == version_ && std::equal(y, y + layout_.size(), evaluated_y_.begin())) return 0;
   const double pairs_before = pairs_total_;
-  const int rc = rhs(t, y, scratch_.data());
+  int rc = 0;
+  try {  // diagnostics and frames: an exception becomes a failure code with its message
+    rc = rhs(t, y, scratch_.data());
+  } catch (...) {
+    error_ = current_exception_message("SpmhdScheme::evaluate");
+    rc = -1;
+  }
   if (rc == 0) {
     evaluated_y_.assign(y, y + layout_.size());
     evaluated_version_ = version_;
@@ -220,38 +232,42 @@ int SpmhdScheme<D, K>::evaluate(Real t, const Real* y) noexcept {
 }
 
 template <int D, class K>
-int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) noexcept {
-  try {
-    if (const int rc = prepare(y); rc != 0) return rc;
-  } catch (...) {
-    error_ = current_exception_message("SpmhdScheme");
-    return 1;
-  }
+int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) {
+  if (const int rc = prepare(y); rc != 0) return rc;
   std::fill(c, c + layout_.size(), 0.0);
   if (!has_stiff_diagonal()) return 0;
   Real* cpsi = c + layout_.offset(Field::Psi);
-  for (std::size_t a = 0; a < n_; ++a) cpsi[perm_[a]] = opt_.sigma * chs_[a] / h_[a];  // 1/tau_a
+  for (std::size_t a = 0; a < n_; ++a) cpsi[perm_[a]] = opt_.sigma * cleaning_speeds_[a] / h_[a];  // 1/tau_a
   return 0;
 }
 
 template <int D, class K>
 Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y, const Real* /*ydot*/) noexcept {
+  constexpr Real failed = std::numeric_limits<Real>::quiet_NaN();  // documented in the header
   try {
-    if (prepare(y) != 0) return 0;
-  } catch (const std::exception&) {
-    return 0;
+    if (prepare(y) != 0) return failed;  // error_ says why
+  } catch (...) {
+    error_ = current_exception_message("SpmhdScheme::max_stable_dt");
+    return failed;
   }
   const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t a = 0; a < n_; ++a) {
-    Real vsig = std::max(chs_[a], cf_[a]);
+    Real vsig = std::max(cleaning_speeds_[a], fast_speed_[a]);
     if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
+    if (!std::isfinite(vsig) || !std::isfinite(fast_speed_[a]) || !std::isfinite(h_[a])) {
+      error_ = "max_stable_dt: non-finite signal speed or h at particle " + std::to_string(perm_[a]);
+      return failed;
+    }
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
   }
   return dt;
 }
 
-template class SpmhdScheme<2, CubicSpline<2>>;
-template class SpmhdScheme<3, CubicSpline<3>>;
+#define SPHARK_SPMHD_SCHEME(K) \
+  template class SpmhdScheme<2, K<2>>;  \
+  template class SpmhdScheme<3, K<3>>;
+SPHARK_KERNELS(SPHARK_SPMHD_SCHEME)
+#undef SPHARK_SPMHD_SCHEME
 
 }  // namespace sphark

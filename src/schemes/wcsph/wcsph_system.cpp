@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "sphark/core/profile.hpp"
-#include "sphark/kernels/kernels.hpp"
+#include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/artificial_viscosity.hpp"
 #include "sphark/operators/conjugate_cleaning.hpp"
 #include "sphark/operators/density_diffusion.hpp"
@@ -191,13 +191,10 @@ Real WcsphSystem<D, Kernel>::max_stable_dt(Real t, const Real* y, const Real* yd
   return dt;
 }
 
-template class WcsphSystem<2, CubicSpline<2>>;
-template class WcsphSystem<2, QuinticSpline<2>>;
-template class WcsphSystem<2, WendlandC2<2>>;
-template class WcsphSystem<2, WendlandC4<2>>;
-template class WcsphSystem<2, WendlandC6<2>>;
-template class WcsphSystem<3, CubicSpline<3>>;
-template class WcsphSystem<3, WendlandC2<3>>;
-template class WcsphSystem<3, WendlandC4<3>>;
+#define SPHARK_WCSPH_SYSTEM(K)          \
+  template class WcsphSystem<2, K<2>>; \
+  template class WcsphSystem<3, K<3>>;
+SPHARK_KERNELS(SPHARK_WCSPH_SYSTEM)
+#undef SPHARK_WCSPH_SYSTEM
 
 }  // namespace sphark

@@ -45,12 +45,18 @@ class SpmhdScheme final : public OdeSystem {
 
   std::size_t size() const override { return layout_.size(); }
   const StateLayout* state_layout() const override { return &layout_; }
-  int rhs(Real t, const Real* y, Real* ydot) noexcept override;
+  int rhs(Real t, const Real* y, Real* ydot) override;
   bool has_stiff_diagonal() const override { return opt_.cleaning != Cleaning::None && opt_.sigma > 0; }
-  int stiff_diagonal(Real t, const Real* y, Real* c) noexcept override;
+  int stiff_diagonal(Real t, const Real* y, Real* c) override;
   std::size_t position_offset() const override;
   std::size_t velocity_offset() const override;
   std::size_t position_size() const override { return opt_.evolve_particles ? D * n_ : 0; }
+  // Courant limit min_a C h_a / v_sig,a, v_sig,a = max(c_h,a, c_f,a) + (1 + beta_visc)|v_a|, a
+  // function of y alone: h, rho, the fast speeds c_f and c_h are derived from y as in rhs() (the
+  // density solve is memoised on the exact positions; the Newton start, the previous h, moves the
+  // result at round-off only). +inf when no particle has a signal speed. On failure (a non-finite
+  // wave speed, an h solve that does not converge) a quiet NaN, with last_error() saying why:
+  // callers must treat NaN as "no step possible" (every comparison with it is false).
   Real max_stable_dt(Real t, const Real* y, const Real* ydot) noexcept override;
   std::string last_error() const override { return error_; }
 
@@ -80,8 +86,10 @@ class SpmhdScheme final : public OdeSystem {
   const std::vector<Real>& div_v() const { return in_particle_order(divv_, 1, out_divv_); }  // continuity form, eq. (25)
   const std::vector<Real>& magnetic_field() const { return in_particle_order(B_, 3, out_B_); }  // 3 x N
   const std::vector<Real>& positions() const { return in_particle_order(x_, D, out_x_); }  // D x N (fixed, or last state)
-  Real cleaning_speed() const { return ch_; }  // global c_h (the largest if local_ch)
-  const std::vector<Real>& cleaning_speeds() const { return in_particle_order(chs_, 1, out_chs_); }  // c_h,a
+  Real cleaning_speed() const { return cleaning_speed_; }  // global c_h (the largest if local_ch)
+  const std::vector<Real>& cleaning_speeds() const {  // c_h,a
+    return in_particle_order(cleaning_speeds_, 1, out_cleaning_speeds_);
+  }
 
   // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
   // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
@@ -89,13 +97,14 @@ class SpmhdScheme final : public OdeSystem {
 
  private:
   int prepare(const Real* y);                      // neighbours, density, P, c, B, c_h
-  void ensure_neighbours_and_density(const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
-  void build_neighbours(const Real* x);  // lists for list_h_, then slots in cell order
+  // 0, or 1 (recoverable, error_ says why) when h cannot be solved or outgrows the box.
+  int ensure_neighbours_and_density(const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
+  int build_neighbours(const Real* x);  // lists for list_h_, then slots in cell order
   struct DensityStats {
     std::size_t not_converged = 0, outside_list = 0, iterations = 0;
     Real h_max = 0;
   };
-  DensityStats solve_density(const Real* x);  // h_[i] <= cap_[i]; sets want_ where not enough
+  DensityStats solve_density(const Real* x);  // h_[i] <= list_h_served_[i]; sets list_h_needed_
   void euler_potential_field(const Real* x, const Real* alpha);
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
@@ -113,31 +122,38 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> ms_;    // masses, slot order
   std::vector<std::uint32_t> perm_, order_;  // slot -> particle; scratch of sort_slots_by_cell
   std::vector<Real> permute_scratch_;
-  std::vector<Real> xg_, v_, u_, psi_, alpha_;  // gathered inputs (slot order)
-  long version_ = 0;                           // bumped by every prepare()
-  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_, out_chs_;
+  std::vector<Real> x_from_state_, v_, u_, psi_, alpha_;  // inputs gathered from the state (slot order)
+  long version_ = 0;                                      // bumped by every prepare()
+  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_,
+      out_cleaning_speeds_;
   SpmhdOptions opt_;
   StateLayout layout_;
   NeighbourSearch<D> ns_;
   bool built_ = false;
-  std::vector<Real> x_;  // fixed positions, or a copy of the current ones (slot order, as all below)
-  std::vector<Real> h_, rho_, omega_, P_, cs_, cf_, chs_, B_, divB_, divv_;
+  // x_: the fixed positions, or those of the last prepare() (the density solve is skipped when the
+  // state's positions equal them bit for bit). Slot order, as all below.
+  std::vector<Real> x_;
+  std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
+  std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
   std::vector<Real> scratch_;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
   long evaluated_version_ = -1;
-  // Pair-loop arrays (SoA): 1/h, 1/h^(D+2) (kernel gradient scale), o = 1/(Omega rho^2),
-  // o M (the D x D block of the Maxwell stress, seed 000 eq. (8), times o), o B, o psi.
-  std::vector<Real> hinv_, fscale_, o_, oM_, oB_, opsi_;
+  // Per-particle factors of the pair loop (init, SoA): 1/h, 1/h^(D+2) (the kernel-gradient scale),
+  // 1/(Omega rho^2), and M/(Omega rho^2) (the D x D block of the Maxwell stress, seed 000 eq. (8)),
+  // B/(Omega rho^2), psi/(Omega rho^2) (the psi of (23): times c_h,a with local_ch).
+  std::vector<Real> inv_h_, grad_scale_, inv_omega_rho2_, stress_over_omega_rho2_, b_over_omega_rho2_,
+      psi_over_omega_rho2_;
   std::vector<Real> h_guess_;       // h at the start of the density solve
   // Per-particle Verlet lists: particle i's list radius is support * list_h_[i] * (1 + skin)
-  // (a pair is listed if closer than the larger of its two radii); cap_[i], the largest h the
-  // lists serve now; want_[i] > 0: the h the next build must serve (an h grew past cap_[i]).
-  std::vector<Real> list_h_, cap_, want_, radii_;
+  // (a pair is listed if closer than the larger of its two radii); list_h_served_[i], the largest
+  // h the lists serve now; list_h_needed_[i] > 0: the h the next build must serve (an h grew past
+  // list_h_served_[i]).
+  std::vector<Real> list_h_, list_h_served_, list_h_needed_, radii_;
   std::vector<Real> cand_;          // per-thread candidate (r^2, r, m) of the density solve
   std::size_t max_list_ = 0;        // longest neighbour list of the current build
   std::size_t interacting_pairs_ = 0;
   double pairs_total_ = 0, h_iterations_ = 0;
-  Real ch_ = 0;
+  Real cleaning_speed_ = 0;         // global c_h (the largest c_h,a with local_ch)
   long rhs_calls_ = 0;
   long builds_ = 0;
   std::string error_;
