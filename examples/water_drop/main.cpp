@@ -9,6 +9,8 @@
 #include "drop_charts.hpp"
 #include "drop_run.hpp"
 #include "sphark/cli/options.hpp"
+#include "sphark/cli/run_record.hpp"
+#include "sphark/io/paraview_state.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/core/profile.hpp"
@@ -72,7 +74,7 @@ int main(int argc, char** argv) {
   sc.exact_initial_pressure = initial_pressure == "exact";
   if (sc.spacing > 0.5 * sc.radius) p.fail("--spacing", "must be at most half the radius");
   check_run_options(p, run_control, base.core);
-  if (base.diagnostics_every > base.core.t_end) p.fail("--diagnostics-every", "must not exceed --t-end");
+  limit_to_t_end(p, "--diagnostics-every", base.diagnostics_every, base.core.t_end);
   base.checkpoint_every = run_control.checkpoint_every;
   base.inject_nan_at = run_control.inject_nan_at;
   std::vector<std::pair<std::string, bool>> runs;
@@ -89,6 +91,7 @@ int main(int argc, char** argv) {
     check_restart_t_end(p, *restart, base.core.t_end);
   }
   start_run(base.core, p.program());
+  RunRecord record = start_run_record(p, base.core.out);  // run.json: options, version, start
   base.argv.assign(args.begin() + 1, args.end());
   base.restart = restart ? &*restart : nullptr;
   std::vector<std::pair<std::string, DropRunSummary>> results;
@@ -103,13 +106,13 @@ int main(int argc, char** argv) {
       results.push_back({label, run_water_drop(s)});
     } catch (const std::exception& e) {
       std::fprintf(stderr, "water_drop: %s run: %s\n", label.c_str(), e.what());
-      return 1;
+      return record.finish_with_exit_code(1, label + " run: " + e.what());
     }
     const DropRunSummary& r = results.back().second;
     // a stop signal (checkpoint written) or a failure (last good state written): no further runs
     if (const int code = report_time_loop_end(r.loop); code != 0) {
       if (!r.loop.ok()) print_summary(label, r);
-      return code;
+      return record.finish_with_exit_code(code, r.loop.failure);
     }
   }
   std::printf("\nwater drop, %s, rtol %g, atol %g, dt %g, t_end %g\n", base.core.stepper.c_str(), base.core.rtol,
@@ -124,7 +127,10 @@ int main(int argc, char** argv) {
               "open in ParaView: paraview %s/%s/drop.pvd  (colour by density, pressure, div_v, psi)\n",
               base.core.out.c_str(), results.size() > 1 ? "cleaned,control" : results[0].first.c_str(),
               base.core.out.c_str(), results[0].first.c_str());
+  std::vector<ParaViewView> views;  // cleaned | control side by side, coloured by pressure
+  for (const auto& r : results) views.push_back({std::filesystem::path(r.first) / "drop.pvd", "pressure"});
+  write_paraview_state_or_warn(base.core.out / "view.pvsm", views);
   for (const auto& r : results)
-    if (!r.second.loop.ok()) return 3;
-  return 0;
+    if (!r.second.loop.ok()) return record.finish_with_exit_code(3, r.first + " run: " + r.second.loop.failure);
+  return record.finish_with_exit_code(0);
 }
