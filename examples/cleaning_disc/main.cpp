@@ -13,6 +13,7 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/csv_writer.hpp"
+#include "sphark/io/paraview_state.hpp"
 #include "sphark/io/visualise.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/signals.hpp"
@@ -155,6 +156,7 @@ RunResult run(const Variant& v, const Settings& s, const ParticleSet2D& p) {
   r.name = v.name;
   const StepperOptions so = stepper_options(core, scheme, "cleaning_disc");
   r.loop = run_time_loop(scheme, scheme.layout(), so, y, ts, hooks);
+  if (v.vtk) write_paraview_state_or_warn(core.out / ("view_" + v.name + ".pvsm"), {{v.name + ".pvd", "div_B"}});
   summarise(r, core.t_end);
   return r;
 }

@@ -14,6 +14,7 @@
 #endif
 
 #include "sphark/io/csv_writer.hpp"
+#include "sphark/io/paraview_state.hpp"
 #include "sphark/io/progress.hpp"
 #include "sphark/io/visualise.hpp"
 #include "sphark/run/run_outputs.hpp"
@@ -157,6 +158,7 @@ RunOutcome run_with_outputs(const Settings& s, const std::string& map, const std
   };
   const auto w0 = std::chrono::steady_clock::now();
   out.loop = run_time_loop(sys, sys.layout(), cfg.stepper, y, ts, hooks);
+  write_paraview_state_or_warn(dir / "view.pvsm", {{"lattice.pvd", "velocity"}});
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   out.result.t_max = out.loop.t_reached;
   out.result.stats = out.loop.stats;

@@ -14,6 +14,7 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/csv_writer.hpp"
+#include "sphark/io/paraview_state.hpp"
 #include "sphark/io/visualise.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/signals.hpp"
@@ -156,6 +157,7 @@ RunSummary run(const std::string& variant, const Settings& s) {
   RunSummary r;
   r.variant = variant;
   r.loop = run_time_loop(scheme, scheme.layout(), so, y, ts, hooks);
+  write_paraview_state_or_warn(dir / "view.pvsm", {{"orszag_tang.pvd", "div_B"}, {"orszag_tang.pvd", "magnetic_pressure"}});
   summarise(r);
   std::printf("%s: %s\n", variant.c_str(), format_stats(r.loop.stats).c_str());
   return r;

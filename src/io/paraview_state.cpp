@@ -27,16 +27,17 @@ struct Interval {
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
-  void add(const Interval& o) { add(o.lo), add(o.hi); }
 };
 
 struct Series {
   std::vector<std::pair<Real, std::string>> frames;
   Interval box[3];                      // bounds of the positions over every frame
   std::size_t particles = 0;            // of the first frame
-  std::map<std::string, Interval> arrays;  // value (vectors: magnitude) ranges over every frame
+  std::map<std::string, std::vector<double>> samples;  // values (vectors: magnitudes) of every frame
   std::map<std::string, int> components;
 };
+
+constexpr std::size_t kSamplesPerFrame = 20000;
 
 Series scan_series(const fs::path& dir, const fs::path& pvd, const std::vector<std::string>& arrays) {
   Series s;
@@ -51,12 +52,14 @@ Series scan_series(const fs::path& dir, const fs::path& pvd, const std::vector<s
     for (const std::string& name : arrays) {
       const VtpArray* a = f.find(name);
       if (!a) throw std::runtime_error("write_paraview_state: '" + path.string() + "' has no point array '" + name + "'");
-      Interval& r = s.arrays[name];
+      std::vector<double>& r = s.samples[name];
       s.components[name] = a->components;
-      for (std::size_t i = 0; i < f.count; ++i) {
+      const std::size_t stride = std::max<std::size_t>(1, f.count / kSamplesPerFrame);  // (a sample of big frames)
+      for (std::size_t i = 0; i < f.count; i += stride) {
         double sq = 0;
         for (int c = 0; c < a->components; ++c) sq += a->values[i * a->components + c] * a->values[i * a->components + c];
-        r.add(a->components == 1 ? a->values[i] : std::sqrt(sq));
+        const double v = a->components == 1 ? a->values[i] : std::sqrt(sq);
+        if (std::isfinite(v)) r.push_back(v);
       }
     }
   }
@@ -131,9 +134,31 @@ int representation_id(std::size_t v) { return 3000 + static_cast<int>(v); }
 int scalar_bar_id(std::size_t v) { return 4000 + static_cast<int>(v); }
 int view_id(std::size_t v) { return 5000 + static_cast<int>(v); }
 
-// ParaView's default "Cool to Warm" map over [lo, hi]; a signed range becomes symmetric.
+// The colour range of values: the central 99 % (0.5 % saturate at either end, so that a few
+// outliers do not wash out the rest), symmetric about 0 for signed data (99 % of |v| inside);
+// the full range where the central one is a single value.
+Interval colour_range(std::vector<double> v) {
+  Interval r;
+  if (v.empty()) return r;
+  const auto quantile = [&v](double q) {
+    auto at = v.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), at, v.end());
+    return *at;
+  };
+  for (double x : v) r.add(x);
+  if (r.lo < 0 && r.hi > 0) {
+    for (double& x : v) x = std::abs(x);
+    const double m = quantile(0.99);
+    if (m > 0) r = {-m, m};
+  } else {
+    const Interval central{quantile(0.005), quantile(0.995)};
+    if (central.hi > central.lo) r = central;
+  }
+  return r;
+}
+
+// ParaView's default "Cool to Warm" map over [r.lo, r.hi].
 void write_lut(StateXml& x, int id, Interval r) {
-  if (r.lo < 0 && r.hi > 0) r.lo = -(r.hi = std::max(-r.lo, r.hi));
   if (!(r.hi > r.lo)) {  // constant (or empty): a unit window around the value
     const double c = std::isfinite(r.lo) ? r.lo : 0;
     r = {c - 1, c + 1};
@@ -191,20 +216,59 @@ void write_representation(StateXml& x, std::size_t v, int reader, int lut, const
   x.close();
 }
 
-// The layout: one view, or a balanced binary split tree (heap order) of views side by side.
-std::string layout_xml(std::size_t views) {
-  std::size_t leaves = 1;
-  while (leaves < views) leaves *= 2;
-  const std::size_t cells = 2 * leaves - 1;
-  std::string s = "      <Layout number_of_elements=\"" + std::to_string(cells) + "\">\n";
-  for (std::size_t i = 0; i < cells; ++i) {
-    const bool leaf = i >= leaves - 1;
-    const std::size_t v = i - (leaves - 1);
-    const int view = leaf && v < views ? view_id(v) : 0;
-    s += "        <Item direction=\"" + std::string(leaf ? "0" : "2") + "\" fraction=\"0.5\" view=\"" +
-         std::to_string(view) + "\"/>\n";
+// The layout: a binary tree of side-by-side splits in heap order (cell i has children 2i + 1
+// and 2i + 2; vtkSMViewLayoutProxy's format), n views in equal widths.
+struct LayoutCell {
+  int direction = 0;  // 0: a view, 2: split side by side
+  double fraction = 0.5;
+  int view = 0;
+};
+
+void split_views(std::vector<LayoutCell>& cells, std::size_t i, std::size_t first, std::size_t n) {
+  if (cells.size() <= i) cells.resize(i + 1);
+  if (n == 1) {
+    cells[i].view = view_id(first);
+    return;
   }
+  const std::size_t left = n / 2;
+  cells[i] = {2, static_cast<double>(left) / static_cast<double>(n), 0};
+  split_views(cells, 2 * i + 1, first, left);
+  split_views(cells, 2 * i + 2, first + left, n - left);
+}
+
+std::string layout_xml(std::size_t views) {
+  std::vector<LayoutCell> cells;
+  split_views(cells, 0, 0, views);
+  std::string s = "      <Layout number_of_elements=\"" + std::to_string(cells.size()) + "\">\n";
+  for (const LayoutCell& c : cells)
+    s += "        <Item direction=\"" + std::to_string(c.direction) + "\" fraction=\"" + num(c.fraction) +
+         "\" view=\"" + std::to_string(c.view) + "\"/>\n";
   return s + "      </Layout>\n";
+}
+
+// The layout of the views, the time keeper on the readers' time steps and the animation scene
+// that plays them, opened on `last_time`.
+void write_layout_and_time(StateXml& x, const std::vector<int>& reader_ids, const std::vector<int>& view_ids,
+                           double last_time) {
+  x.open("misc", "ViewLayout", kLayout, 16);
+  x.raw(layout_xml(view_ids.size()));
+  x.close();
+  x.open("misc", "TimeKeeper", kTimeKeeper, 16);
+  x.proxies("TimeSources", reader_ids);
+  x.proxies("Views", view_ids);
+  x.numbers("Time", {last_time});
+  x.close();
+  x.open("animation", "AnimationScene", kScene, 16);
+  x.proxies("Cues", {kCue});
+  x.proxies("TimeKeeper", {kTimeKeeper});
+  x.proxies("ViewModules", view_ids);
+  x.value("PlayMode", "2");  // snap to the series' time steps
+  x.numbers("AnimationTime", {last_time});  // open on the last frame: the run's end state
+  x.close();
+  x.open("animation", "TimeAnimationCue", kCue, 16);
+  x.proxies("AnimatedProxy", {kTimeKeeper});
+  x.value("AnimatedPropertyName", "Time");
+  x.close();
 }
 
 }  // namespace
@@ -230,6 +294,8 @@ void write_paraview_state(const fs::path& state_file, const std::vector<ParaView
   const auto index = [](const auto& list, const auto& x) {
     return static_cast<std::size_t>(std::find(list.begin(), list.end(), x) - list.begin());
   };
+  double last_time = -std::numeric_limits<double>::infinity();
+  for (const Series& sr : series) last_time = std::max(last_time, sr.frames.back().first);
   StateXml x;
   std::vector<std::pair<int, std::string>> sources, lut_items, reps, bars, view_items;
   std::vector<int> reader_ids, view_ids;
@@ -241,10 +307,10 @@ void write_paraview_state(const fs::path& state_file, const std::vector<ParaView
     reader_ids.push_back(reader_id(k));
   }
   for (std::size_t k = 0; k < luts.size(); ++k) {
-    Interval r;
-    for (std::size_t j = 0; j < pvds.size(); ++j)
-      if (series[j].arrays.count(luts[k])) r.add(series[j].arrays.at(luts[k]));
-    write_lut(x, lut_id(k), r);
+    std::vector<double> values;
+    for (const Series& sr : series)
+      if (sr.samples.count(luts[k])) values.insert(values.end(), sr.samples.at(luts[k]).begin(), sr.samples.at(luts[k]).end());
+    write_lut(x, lut_id(k), colour_range(std::move(values)));
     lut_items.push_back({lut_id(k), luts[k] + ".PVLookupTable"});
   }
   for (std::size_t v = 0; v < views.size(); ++v) {
@@ -256,23 +322,7 @@ void write_paraview_state(const fs::path& state_file, const std::vector<ParaView
     view_items.push_back({view_id(v), "RenderView" + std::to_string(v + 1)});
     view_ids.push_back(view_id(v));
   }
-  x.open("misc", "ViewLayout", kLayout, 16);
-  x.raw(layout_xml(views.size()));
-  x.close();
-  x.open("misc", "TimeKeeper", kTimeKeeper, 16);
-  x.proxies("TimeSources", reader_ids);
-  x.proxies("Views", view_ids);
-  x.close();
-  x.open("animation", "AnimationScene", kScene, 16);
-  x.proxies("Cues", {kCue});
-  x.proxies("TimeKeeper", {kTimeKeeper});
-  x.proxies("ViewModules", view_ids);
-  x.value("PlayMode", "2");  // snap to the series' time steps
-  x.close();
-  x.open("animation", "TimeAnimationCue", kCue, 16);
-  x.proxies("AnimatedProxy", {kTimeKeeper});
-  x.value("AnimatedPropertyName", "Time");
-  x.close();
+  write_layout_and_time(x, reader_ids, view_ids, last_time);
   x.collection("animation", {{kScene, "AnimationScene1"}, {kCue, "TimeAnimationCue1"}});
   x.collection("layouts", {{kLayout, "Layout #1"}});
   x.collection("lookup_tables", lut_items);

@@ -54,6 +54,13 @@ std::vector<std::string> values(vtkXMLDataElement* prop, const char* child) {
   return out;
 }
 
+double number(const std::string& s) {
+  double v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) throw std::runtime_error("read_paraview_state: bad number '" + s + "'");
+  return v;
+}
+
 }  // namespace
 
 std::vector<std::pair<Real, std::string>> read_pvd(const fs::path& pvd) {
@@ -114,8 +121,10 @@ ParaViewStateRefs read_paraview_state(const fs::path& state_file) {
       if (input.size() != 1 || !proxies.count(input[0])) fail("representation " + id + " shows no reader");
       if (lut.size() != 1 || !proxies.count(lut[0])) fail("representation " + id + " has no colour map");
       const auto file = values(property(proxies[input[0]], "FileName"), "Element");
+      const auto rgb = values(property(proxies[lut[0]], "RGBPoints"), "Element");
+      if (rgb.size() < 8 || rgb.size() % 4 != 0) fail("colour map " + lut[0] + " without RGBPoints");
       refs.colourings.push_back({colour[4], colour[3] == "0" ? "points" : colour[3] == "1" ? "cells" : colour[3],
-                                 file.empty() ? "" : file[0]});
+                                 file.empty() ? "" : file[0], number(rgb.front()), number(rgb[rgb.size() - 4])});
     }
   }
   return refs;

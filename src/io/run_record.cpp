@@ -18,12 +18,12 @@ namespace sphark {
 
 namespace fs = std::filesystem;
 
-const char* outcome_name(RunOutcome o) {
+const char* outcome_name(RecordOutcome o) {
   switch (o) {
-    case RunOutcome::running: return "running";
-    case RunOutcome::ok: return "ok";
-    case RunOutcome::stopped: return "stopped";
-    case RunOutcome::failed: return "failed";
+    case RecordOutcome::running: return "running";
+    case RecordOutcome::ok: return "ok";
+    case RecordOutcome::stopped: return "stopped";
+    case RecordOutcome::failed: return "failed";
   }
   return "?";
 }
@@ -63,7 +63,7 @@ RunRecord::RunRecord(fs::path dir, std::string program, Json options, int thread
   json_["host"] = host_name();
   json_["working_directory"] = working_directory();
   json_["start"] = utc_timestamp();
-  json_["outcome"] = outcome_name(RunOutcome::running);
+  json_["outcome"] = outcome_name(RecordOutcome::running);
   write();
   start_mtime_ = fs::last_write_time(path());
 }
@@ -73,7 +73,7 @@ RunRecord::RunRecord(RunRecord&& other) noexcept
       start_mtime_(other.start_mtime_), finished_(std::exchange(other.finished_, true)) {}
 
 RunRecord::~RunRecord() {
-  if (!finished_) finish(RunOutcome::failed, "ended without recording an outcome");
+  if (!finished_) finish(RecordOutcome::failed, "ended without recording an outcome");
 }
 
 void RunRecord::set(const std::string& key, Json value) {
@@ -110,7 +110,7 @@ std::vector<std::string> RunRecord::files_written() const {
   return files;
 }
 
-void RunRecord::finish(RunOutcome outcome, const std::string& reason) {
+void RunRecord::finish(RecordOutcome outcome, const std::string& reason) {
   if (finished_) return;
   finished_ = true;
   try {
@@ -129,11 +129,11 @@ void RunRecord::finish(RunOutcome outcome, const std::string& reason) {
 
 int RunRecord::finish_with_exit_code(int code, const std::string& reason) {
   if (code == 0) {
-    finish(RunOutcome::ok, reason);
+    finish(RecordOutcome::ok, reason);
   } else if (code == 128 + SIGINT || code == 128 + SIGTERM) {
-    finish(RunOutcome::stopped, !reason.empty() ? reason : code == 128 + SIGINT ? "SIGINT" : "SIGTERM");
+    finish(RecordOutcome::stopped, !reason.empty() ? reason : code == 128 + SIGINT ? "SIGINT" : "SIGTERM");
   } else {
-    finish(RunOutcome::failed, !reason.empty() ? reason : "exit code " + std::to_string(code));
+    finish(RecordOutcome::failed, !reason.empty() ? reason : "exit code " + std::to_string(code));
   }
   return code;
 }

@@ -63,7 +63,7 @@ TEST(RunRecord, StartsWithWhatRunsHowItWasBuiltAndEveryOption) {
   EXPECT_EQ(v.find("sundials")->as_string().rfind("6.", 0), 0u);
   EXPECT_EQ(v.find("vtk")->as_string().rfind("9.", 0), 0u);
   EXPECT_EQ(v.find("build_type")->as_string(), build_info().build_type);
-  record.finish(RunOutcome::ok);
+  record.finish(RecordOutcome::ok);
 }
 
 TEST(RunRecord, EndsWithOutcomeReasonAndExactlyTheFilesWrittenSinceTheStart) {
@@ -84,7 +84,7 @@ TEST(RunRecord, EndsWithOutcomeReasonAndExactlyTheFilesWrittenSinceTheStart) {
   EXPECT_EQ(r.as_object()[3].first, "variant");  // set() entries stand before "threads"
   EXPECT_NE(r.find("end"), nullptr);
   EXPECT_GE(r.find("wall_seconds")->as_number(), 0);
-  record.finish(RunOutcome::failed, "late");  // the first outcome counts
+  record.finish(RecordOutcome::failed, "late");  // the first outcome counts
   EXPECT_EQ(read_run_record(record.path()).find("outcome")->as_string(), "ok");
 }
 
@@ -116,7 +116,7 @@ TEST(RunRecord, ARecordLeftUnfinishedSaysSo) {
     RunRecord a(other.path(), "p", options(), 1);
     RunRecord b(std::move(a));
     EXPECT_TRUE(a.finished());
-    b.finish(RunOutcome::stopped, "SIGTERM");
+    b.finish(RecordOutcome::stopped, "SIGTERM");
   }
   EXPECT_EQ(read_run_record(other.path() / "run.json").find("outcome")->as_string(), "stopped");
 }

@@ -4,9 +4,10 @@
 // .pvd series (io/vtk_series.hpp) with its particles drawn as discs ("Point Gaussian", radius
 // half the mean spacing) coloured by one point array (vectors by magnitude), with a colour
 // legend, the camera on the particles' bounds (2D: looking down z, parallel projection) and the
-// animation on the series' time steps. Two or more views stand side by side; views colouring
-// by the same array share one colour map, whose range covers every frame of every series
-// that uses it (symmetric about zero for signed data, e.g. div B).
+// animation on the series' time steps, opened on the last frame. Two or more views stand side
+// by side; views colouring by the same array share one colour map, whose range holds the
+// central 99 % of the values of every frame of every series that uses it (symmetric about zero
+// for signed data, e.g. div B; the outliers saturate).
 //
 // Paths in the state are relative to the state file's folder, so the folder can be moved or
 // copied; ParaView resolves them against its working directory, so open it from that folder
@@ -53,6 +54,7 @@ struct ParaViewStateRefs {
     std::string array;
     std::string association;       // ColorArrayName's field association: "points" or "cells"
     std::string reader_file;       // the FileName of the reader the representation shows
+    double lo = 0, hi = 0;         // the colour map's range (first and last RGBPoints)
   };
   std::vector<Colouring> colourings;  // one per representation that colours by an array
   int views = 0;                      // RenderView proxies

@@ -27,8 +27,8 @@
 
 namespace sphark {
 
-enum class RunOutcome { running, ok, stopped, failed };
-const char* outcome_name(RunOutcome o);  // "running", "ok", "stopped", "failed"
+enum class RecordOutcome { running, ok, stopped, failed };
+const char* outcome_name(RecordOutcome o);  // "running", "ok", "stopped", "failed"
 
 // The current UTC time as ISO 8601 with milliseconds, "2024-05-01T12:34:56.789Z".
 std::string utc_timestamp();
@@ -49,7 +49,7 @@ class RunRecord {
   void write();
   // Ends the record: end time, wall time, outcome and reason, files; writes it. The first call
   // counts; later ones are ignored. Never throws (a failed write is one line on stderr).
-  void finish(RunOutcome outcome, const std::string& reason = "");
+  void finish(RecordOutcome outcome, const std::string& reason = "");
   // finish() from a program's exit code: 0 ok; 128 + SIGINT / SIGTERM stopped (reason "SIGINT"
   // / "SIGTERM" unless given); anything else failed (reason, or "exit code N"). Returns code.
   int finish_with_exit_code(int code, const std::string& reason = "");
