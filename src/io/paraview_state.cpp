@@ -12,6 +12,7 @@
 
 #include "sphark/io/atomic_file.hpp"
 #include "sphark/io/paraview_state.hpp"
+#include "sphark/io/vtk_series.hpp"  // xml_escape
 #include "sphark/io/vtp_reader.hpp"
 
 namespace sphark {
@@ -72,19 +73,6 @@ std::string num(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::string attr(const std::string& s) {  // XML attribute value
-  std::string out;
-  for (const char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 class StateXml {
  public:
@@ -97,7 +85,7 @@ class StateXml {
   void values(const std::string& name, const std::vector<std::string>& v) {
     head(name, v.size());
     for (std::size_t i = 0; i < v.size(); ++i)
-      x_ += "        <Element index=\"" + std::to_string(i) + "\" value=\"" + attr(v[i]) + "\"/>\n";
+      x_ += "        <Element index=\"" + std::to_string(i) + "\" value=\"" + xml_escape(v[i]) + "\"/>\n";
     x_ += "      </Property>\n";
   }
   void value(const std::string& name, const std::string& v) { values(name, {v}); }
@@ -114,7 +102,7 @@ class StateXml {
   void raw(const std::string& text) { x_ += text; }
   void collection(const std::string& name, const std::vector<std::pair<int, std::string>>& items) {
     x_ += "    <ProxyCollection name=\"" + name + "\">\n";
-    for (const auto& [id, n] : items) x_ += "      <Item id=\"" + std::to_string(id) + "\" name=\"" + attr(n) + "\"/>\n";
+    for (const auto& [id, n] : items) x_ += "      <Item id=\"" + std::to_string(id) + "\" name=\"" + xml_escape(n) + "\"/>\n";
     x_ += "    </ProxyCollection>\n";
   }
   const std::string& text() const { return x_; }

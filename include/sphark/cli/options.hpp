@@ -67,8 +67,9 @@ class OptionParser {
  public:
   OptionParser(std::string program, std::string description);
 
-  // Value options. Names must start with "--"; throws std::logic_error for a duplicate name or
-  // a default that violates its own constraint (programmer errors).
+  // Value options. Names must start with "--" (--help and --config are taken); throws
+  // std::logic_error for a duplicate name or a default that violates its own constraint
+  // (programmer errors).
   void add(std::string name, Real* target, std::string help, NumberConstraint c = {});
   void add(std::string name, int* target, std::string help, NumberConstraint c = {});
   void add(std::string name, long* target, std::string help, NumberConstraint c = {});
