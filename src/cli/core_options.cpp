@@ -58,6 +58,12 @@ StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, st
   return s;
 }
 
+void limit_to_t_end(const OptionParser& p, std::string_view option, Real& value, Real t_end) {
+  if (value <= t_end) return;
+  if (p.was_given(option)) p.fail(option, "must not exceed --t-end");
+  value = t_end;
+}
+
 void apply_thread_count(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
 }

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace sphark {
 namespace {
@@ -124,7 +125,8 @@ OptionParser::OptionParser(std::string program, std::string description)
     : program_(std::move(program)), description_(std::move(description)) {}
 
 void OptionParser::add_option(Option o) {
-  if (o.name.size() < 3 || o.name.compare(0, 2, "--") != 0 || o.name == "--help") {
+  if (o.name.size() < 3 || o.name.compare(0, 2, "--") != 0 || o.name == "--help" ||
+      o.name == "--config") {
     throw std::logic_error("OptionParser: bad option name '" + o.name + "'");
   }
   if (find(o.name)) throw std::logic_error("OptionParser: duplicate option " + o.name);
@@ -138,6 +140,10 @@ const OptionParser::Option* OptionParser::find(std::string_view name) const {
   return nullptr;
 }
 
+OptionParser::Option* OptionParser::find(std::string_view name) {
+  return const_cast<Option*>(std::as_const(*this).find(name));
+}
+
 void OptionParser::add(std::string name, Real* target, std::string help, NumberConstraint c) {
   if (!std::isfinite(*target) || !satisfies(*target, c)) {
     throw std::logic_error("OptionParser: default of " + name + " violates its constraint");
@@ -148,24 +154,29 @@ void OptionParser::add(std::string name, Real* target, std::string help, NumberC
     *target = *v;
     return true;
   };
-  add_option({std::move(name), "REAL", std::move(help), real_text(*target),
-              expected_number(c, false), assign});
+  Option o{std::move(name), "REAL", std::move(help), real_text(*target), expected_number(c, false), assign,
+           Kind::real, [target] { return Json(*target); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add(std::string name, int* target, std::string help, NumberConstraint c) {
   if (!satisfies(*target, c)) {
     throw std::logic_error("OptionParser: default of " + name + " violates its constraint");
   }
-  add_option({std::move(name), "INT", std::move(help), std::to_string(*target),
-              expected_number(c, true), integer_assign(target, c)});
+  Option o{std::move(name), "INT", std::move(help), std::to_string(*target), expected_number(c, true),
+           integer_assign(target, c),
+           Kind::integer, [target] { return Json(*target); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add(std::string name, long* target, std::string help, NumberConstraint c) {
   if (!satisfies(static_cast<Real>(*target), c)) {
     throw std::logic_error("OptionParser: default of " + name + " violates its constraint");
   }
-  add_option({std::move(name), "INT", std::move(help), std::to_string(*target),
-              expected_number(c, true), integer_assign(target, c)});
+  Option o{std::move(name), "INT", std::move(help), std::to_string(*target), expected_number(c, true),
+           integer_assign(target, c),
+           Kind::integer, [target] { return Json(*target); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add(std::string name, std::string* target, std::string help, OneOf allowed) {
@@ -185,8 +196,10 @@ void OptionParser::add(std::string name, std::string* target, std::string help, 
     *target = std::string(s);
     return true;
   };
-  add_option({std::move(name), "NAME", std::move(help), target->empty() ? "none" : *target,
-              listed ? "one of: " + join(vals, ", ") : "a non-empty string", assign});
+  Option o{std::move(name), "NAME", std::move(help), target->empty() ? "none" : *target,
+           listed ? "one of: " + join(vals, ", ") : "a non-empty string", assign,
+           Kind::string, [target] { return Json(*target); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add(std::string name, std::filesystem::path* target, std::string help,
@@ -197,8 +210,9 @@ void OptionParser::add(std::string name, std::filesystem::path* target, std::str
     return true;
   };
   if (metavar.empty()) metavar = "PATH";  // an empty metavar would mark a flag
-  add_option({std::move(name), std::move(metavar), std::move(help), target->string(), "a path",
-              assign});
+  Option o{std::move(name), std::move(metavar), std::move(help), target->string(), "a path", assign,
+           Kind::path, [target] { return Json(target->string()); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add(std::string name, std::vector<Real>* target, std::string help,
@@ -219,8 +233,9 @@ void OptionParser::add(std::string name, std::vector<Real>* target, std::string 
     if (v) *target = std::move(*v);
     return v.has_value();
   };
-  add_option({std::move(name), "LIST", std::move(help), def.empty() ? "none" : def,
-              plural_expected(c, false), assign});
+  Option o{std::move(name), "LIST", std::move(help), def.empty() ? "none" : def, plural_expected(c, false), assign,
+           Kind::real_list, [target] { return Json(Json::Array(target->begin(), target->end())); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add(std::string name, std::vector<int>* target, std::string help,
@@ -241,17 +256,21 @@ void OptionParser::add(std::string name, std::vector<int>* target, std::string h
     if (v) *target = std::move(*v);
     return v.has_value();
   };
-  add_option({std::move(name), "LIST", std::move(help), def.empty() ? "none" : def,
-              plural_expected(c, true), assign});
+  Option o{std::move(name), "LIST", std::move(help), def.empty() ? "none" : def, plural_expected(c, true), assign,
+           Kind::integer_list, [target] { return Json(Json::Array(target->begin(), target->end())); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add_flag(std::string name, bool* target, std::string help,
                             bool value_when_given) {
-  auto assign = [target, value_when_given](std::string_view) {
-    *target = value_when_given;
+  auto assign = [target, value_when_given](std::string_view s) {
+    if (!s.empty() && s != "off") return false;
+    *target = s.empty() ? value_when_given : !value_when_given;
     return true;
   };
-  add_option({std::move(name), "", std::move(help), "", "no value", assign});
+  Option o{std::move(name), "", std::move(help), "", "no value", assign,
+           Kind::flag, [target, value_when_given] { return Json(*target == value_when_given); }, false};
+  add_option(std::move(o));
 }
 
 void OptionParser::add_switch(std::string name, bool* target, std::string help) {
@@ -260,16 +279,20 @@ void OptionParser::add_switch(std::string name, bool* target, std::string help) 
     *target = s == "on";
     return true;
   };
-  add_option({std::move(name), "on|off", std::move(help), *target ? "on" : "off", "on or off",
-              assign});
+  Option o{std::move(name), "on|off", std::move(help), *target ? "on" : "off", "on or off", assign,
+           Kind::on_off, [target] { return Json(*target); }, false};
+  add_option(std::move(o));
+}
+
+ParseStatus OptionParser::report(std::string_view option, const std::string& reason) const {
+  std::fprintf(stderr, "%s: %.*s: %s\n", program_.c_str(), static_cast<int>(option.size()), option.data(),
+               reason.c_str());
+  return ParseStatus::usage_error;
 }
 
 ParseStatus OptionParser::parse(int argc, const char* const* argv) {
-  auto error = [this](std::string_view option, const std::string& reason) {
-    std::fprintf(stderr, "%s: %.*s: %s\n", program_.c_str(), static_cast<int>(option.size()),
-                 option.data(), reason.c_str());
-    return ParseStatus::usage_error;
-  };
+  arguments_.assign(argv + (argc > 0 ? 1 : 0), argv + std::max(argc, 0));
+  config_files_.clear();
   for (int i = 1; i < argc; ++i) {  // --help wins wherever it is
     const std::string_view arg = argv[i];
     if (arg == "--help" || arg == "-h") {
@@ -278,22 +301,43 @@ ParseStatus OptionParser::parse(int argc, const char* const* argv) {
       return ParseStatus::help;
     }
   }
+  for (int i = 1; i < argc; ++i) {  // --config files first, in order: the command line overrides them
+    const std::string_view arg = argv[i];
+    if (arg != "--config" && arg.rfind("--config=", 0) != 0) continue;
+    std::string_view file;
+    if (arg.size() > 8) {
+      file = arg.substr(9);
+    } else if (i + 1 < argc && std::string_view(argv[i + 1]).compare(0, 2, "--") != 0) {
+      file = argv[++i];
+    }
+    if (file.empty()) return report("--config", "missing value (expected a JSON FILE, e.g. a run.json)");
+    if (apply_config_file(std::string(file)) != ParseStatus::ok) return ParseStatus::usage_error;
+  }
+  return parse_arguments(argc, argv);
+}
+
+ParseStatus OptionParser::parse_arguments(int argc, const char* const* argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) {
       std::string quoted = "'";  // (built stepwise: GCC 12 -Wrestrict false positive)
       quoted.append(arg).append("'");
-      return error(quoted, "unexpected argument (try --help)");
+      return report(quoted, "unexpected argument (try --help)");
     }
     const auto eq = arg.find('=');
     const std::string_view name = arg.substr(0, eq);
-    const Option* o = find(name);
-    if (!o) return error(name, "unknown option (try --help)");
+    if (name == "--config") {  // applied already
+      if (eq == std::string_view::npos) ++i;
+      continue;
+    }
+    Option* o = find(name);
+    if (!o) return report(name, "unknown option (try --help)");
     if (o->metavar.empty()) {  // flag
       if (eq != std::string_view::npos) {
-        return error(name, "takes no value (got '" + std::string(arg.substr(eq + 1)) + "')");
+        return report(name, "takes no value (got '" + std::string(arg.substr(eq + 1)) + "')");
       }
       o->assign({});
+      o->given = true;
       continue;
     }
     std::string_view value;
@@ -302,11 +346,12 @@ ParseStatus OptionParser::parse(int argc, const char* const* argv) {
     } else if (i + 1 < argc && std::string_view(argv[i + 1]).compare(0, 2, "--") != 0) {
       value = argv[++i];
     } else {
-      return error(name, "missing value (expected " + o->expected + ")");
+      return report(name, "missing value (expected " + o->expected + ")");
     }
     if (!o->assign(value)) {
-      return error(name, "bad value '" + std::string(value) + "' (expected " + o->expected + ")");
+      return report(name, "bad value '" + std::string(value) + "' (expected " + o->expected + ")");
     }
+    o->given = true;
   }
   return ParseStatus::ok;
 }
@@ -321,60 +366,6 @@ void OptionParser::parse_or_exit(int argc, const char* const* argv) {
 
 void OptionParser::fail(std::string_view option, std::string_view reason) const {
   exit_usage_error(program_, option, reason);
-}
-
-// Appends `text` to `out` wrapped at kHelpWidth columns, continuation lines indented by
-// `indent` spaces; the first line starts at column `column`.
-static void append_wrapped(std::string& out, const std::string& text, std::size_t indent,
-                    std::size_t column) {
-  constexpr std::size_t kHelpWidth = 100;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t room = kHelpWidth > column ? kHelpWidth - column : 20;
-    std::size_t end = text.size();
-    if (end - start > room) {
-      end = text.rfind(' ', start + room);
-      if (end == std::string::npos || end <= start) end = text.find(' ', start + room);
-      if (end == std::string::npos) end = text.size();
-    }
-    out.append(text, start, end - start);
-    start = end < text.size() ? end + 1 : end;
-    if (start < text.size()) {
-      out += '\n';
-      out.append(indent, ' ');
-      column = indent;
-    }
-  }
-  out += '\n';
-}
-
-std::string OptionParser::help() const {
-  std::vector<std::string> heads;
-  std::size_t width = std::string_view("--help").size();
-  for (const auto& o : options_) {
-    heads.push_back(o.metavar.empty() ? o.name : o.name + " " + o.metavar);
-    width = std::max(width, heads.back().size());
-  }
-  std::string s = program_;
-  s += ": ";
-  s += description_;
-  s += "\n\nusage: ";
-  s += program_;
-  s += " [options]\n\noptions:\n";
-  const std::size_t indent = 2 + width + 2;
-  for (std::size_t k = 0; k < options_.size(); ++k) {
-    const Option& o = options_[k];
-    s += "  ";
-    s += heads[k];
-    s.append(width - heads[k].size() + 2, ' ');
-    std::string text = o.help;
-    if (!o.metavar.empty()) text += " (" + o.expected + "; default " + o.default_text + ")";
-    append_wrapped(s, text, indent, indent);
-  }
-  s += "  --help";
-  s.append(width - 6 + 2, ' ');
-  s += "print this help and exit\n";
-  return s;
 }
 
 }  // namespace sphark

@@ -57,6 +57,9 @@ vtkNew<vtkDoubleArray> make_array(const std::string& name, const Real* data, int
   return arr;
 }
 
+
+}  // namespace
+
 std::string xml_escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
@@ -71,8 +74,6 @@ std::string xml_escape(const std::string& s) {
   }
   return out;
 }
-
-}  // namespace
 
 void write_vtp(const std::filesystem::path& path, const ParticleFrame& frame, Real t) {
   check_frame(frame);

@@ -78,9 +78,11 @@ void apply_run_control(TimeLoopSettings& ts, const RunControlOptions& o, const C
   ts.inject_nan_at = o.inject_nan_at;
 }
 
-void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core) {
-  if (core.output_every > core.t_end) p.fail("--output-every", "must not exceed --t-end");
-  if (o.checkpoint_every > core.t_end) p.fail("--checkpoint-every", "must not exceed --t-end");
+void check_run_options(const OptionParser& p, RunControlOptions& o, CoreOptions& core) {
+  // a value the user gave must fit the run; a default follows it (issue #21: `--t-end 0.01`
+  // alone is a valid short run)
+  limit_to_t_end(p, "--output-every", core.output_every, core.t_end);
+  limit_to_t_end(p, "--checkpoint-every", o.checkpoint_every, core.t_end);
 }
 
 std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program) {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "sphark/cli/run_record.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/scene.hpp"
@@ -29,18 +30,18 @@ void Scene::check_restart_run(const OptionParser& p, const std::string& checkpoi
 namespace {
 
 struct ParsedRun {
+  explicit ParsedRun(const Scene& scene) : parser(scene.program(), scene.description()) {}
+  OptionParser parser;  // kept: the run record lists its every option
   CoreOptions core;
   RunControlOptions control;
   std::vector<std::string> runs;
   std::vector<std::string> stored_options;  // argv[1..] of this run (a restart's stored ones first)
 };
 
-ParsedRun parse(Scene& scene, int argc, char** argv, const Checkpoint* restart) {
-  const std::string program = scene.program();
-  const std::vector<std::string> args = run_arguments(program, argc, argv, restart);
-  ParsedRun r;
+void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* restart) {
+  const std::vector<std::string> args = run_arguments(scene.program(), argc, argv, restart);
+  OptionParser& parser = r.parser;
   scene.set_defaults(r.core);
-  OptionParser parser(program, scene.description());
   add_core_options(parser, r.core, scene.stepper_names());
   scene.add_options(parser);
   add_run_options(parser, r.control, scene.checkpoint_help());
@@ -57,7 +58,6 @@ ParsedRun parse(Scene& scene, int argc, char** argv, const Checkpoint* restart) 
     check_restart_t_end(parser, *restart, r.core.t_end);
   }
   r.stored_options.assign(args.begin() + 1, args.end());
-  return r;
 }
 
 TimeLoopSettings default_settings(const Scene& scene, const std::string& name, const ParsedRun& p,
@@ -88,8 +88,8 @@ TimeLoopHooks hooks_of(SceneRun& run) {
   return h;
 }
 
-// One run through the time loop; its exit status (report_time_loop_end).
-int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Checkpoint* restart) {
+// One run through the time loop; its exit status (report_time_loop_end) and, if not ok, why.
+int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Checkpoint* restart, std::string& why) {
   const std::filesystem::path dir = p.core.out / scene.subdirectory(name);
   prepare_output_dir(dir, scene.program());
   std::unique_ptr<SceneRun> run = scene.make_run(name, p.core);
@@ -104,7 +104,13 @@ int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Che
   const TimeLoopResult result = run_time_loop(run->system(), run->layout(), so, std::move(y0), ts, hooks);
   std::printf("%s %s: %s\n", scene.program().c_str(), name.c_str(), format_stats(result.stats).c_str());
   scene.finished(name, *run, result);
+  if (result.status == TimeLoopStatus::Failed) why = result.failure;  // as report_time_loop_end prints it
   return report_time_loop_end(result);
+}
+
+void write_paraview_states(const Scene& scene, const std::filesystem::path& out, const std::vector<std::string>& done) {
+  for (const Scene::ParaViewStateFile& state : scene.paraview_states(done))
+    write_paraview_state_or_warn(out / state.file, state.views);
 }
 
 }  // namespace
@@ -112,22 +118,33 @@ int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Che
 int run_scene_main(Scene& scene, int argc, char** argv) {
   const std::string program = scene.program();
   const std::optional<Checkpoint> restart = load_restart_option(argc, argv, program);
-  const ParsedRun p = parse(scene, argc, argv, restart ? &*restart : nullptr);
+  ParsedRun p(scene);
+  parse(p, scene, argc, argv, restart ? &*restart : nullptr);
   start_run(p.core, program);
+  RunRecord record = start_run_record(p.parser, p.core.out);  // run.json: options, version, start
+  if (restart) {
+    record.set("restart", restart->text("run") + " from t = " + std::to_string(restart->t));
+    record.write();
+  }
   try {
-    if (const std::optional<int> code = scene.run_instead(p.core)) return *code;
+    if (const std::optional<int> code = scene.run_instead(p.core)) return record.finish_with_exit_code(*code);
     int status = 0;
+    std::vector<std::string> done;
+    std::string why;
     for (const std::string& name : p.runs) {
-      status = run_one(scene, name, p, restart ? &*restart : nullptr);
+      status = run_one(scene, name, p, restart ? &*restart : nullptr, why);
+      done.push_back(name);
       if (status != 0) break;  // a stop signal (checkpoint written) or a failure (last good state written)
     }
+    write_paraview_states(scene, p.core.out, done);
     const int report = scene.report(p.core, p.runs, status == 0);
-    return status != 0 ? status : report;
+    return record.finish_with_exit_code(status != 0 ? status : report, why);
   } catch (const std::invalid_argument& e) {
+    record.finish_with_exit_code(2, e.what());
     exit_usage_error(program, "", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
-    return 1;
+    return record.finish_with_exit_code(1, e.what());
   }
 }
 

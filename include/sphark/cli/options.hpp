@@ -10,6 +10,15 @@
 // Syntax: "--name value" or "--name=value"; flags take no value. The last occurrence wins.
 // Any bad input yields ONE line on stderr, e.g.
 //   water_drop: --rtol: bad value 'abc' (expected a positive real number)
+//
+// Every parser also takes "--config FILE": the option values of a JSON file, either a run
+// record (io/run_record.hpp: its "options" object) or a flat object {"t-end": 0.5, ...}, applied
+// first, through the same checks, so options on the command line override them wherever they
+// stand. A key that names no option, a value of the wrong JSON type or out of range gets the
+// same one line and exit 2 as the command line, e.g.
+//   water_drop: --t-end: bad value '-1' in config 'run.json' (expected a positive real number)
+// Values given on the command line or in a config are "given" (was_given); the others keep
+// their defaults, which a program may adapt to the run (e.g. --output-every to a short --t-end).
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -21,6 +30,7 @@
 #include "sphark/core/types.hpp"
 #include "sphark/integrate/ode_system.hpp"
 #include "sphark/integrate/stepper_options.hpp"
+#include "sphark/io/json.hpp"
 
 namespace sphark {
 
@@ -38,6 +48,16 @@ struct OneOf {
 
 enum class ParseStatus { ok, help, usage_error };
 
+// One option as a run record stores it: name without "--", type ("real", "integer", "string",
+// "path", "real list", "integer list", "flag", "switch"), current value, and whether the user
+// gave it (command line or config) or it is the default.
+struct OptionRecord {
+  std::string name;
+  std::string type;
+  Json value;
+  bool given = false;
+};
+
 // Prints "<program>: <option>: <reason>" (or "<program>: <reason>" if option is empty) to
 // stderr and exits with status 2.
 [[noreturn]] void exit_usage_error(std::string_view program, std::string_view option,
@@ -47,8 +67,9 @@ class OptionParser {
  public:
   OptionParser(std::string program, std::string description);
 
-  // Value options. Names must start with "--"; throws std::logic_error for a duplicate name or
-  // a default that violates its own constraint (programmer errors).
+  // Value options. Names must start with "--" (--help and --config are taken); throws
+  // std::logic_error for a duplicate name or a default that violates its own constraint
+  // (programmer errors).
   void add(std::string name, Real* target, std::string help, NumberConstraint c = {});
   void add(std::string name, int* target, std::string help, NumberConstraint c = {});
   void add(std::string name, long* target, std::string help, NumberConstraint c = {});
@@ -80,25 +101,59 @@ class OptionParser {
   // For checks across options after parsing: one line naming the option, exit 2.
   [[noreturn]] void fail(std::string_view option, std::string_view reason) const;
 
+  // Applies the option values of a JSON object (keys with or without "--"; a run record's
+  // "options" object) as parse() does with --config; `source` names it in error lines. Prints
+  // one line and returns usage_error on the first bad entry.
+  ParseStatus apply_json(const Json& options, std::string_view source);
+  // Reads FILE (a run record or a flat object) and applies it; usage_error with one line
+  // "<program>: --config: ..." if it cannot be read or parsed, or records another program.
+  ParseStatus apply_config_file(const std::filesystem::path& file);
+
+  // Whether `name` ("--t-end") was given on the command line or in a config; std::logic_error
+  // for a name that is no option.
+  bool was_given(std::string_view name) const;
+  // Every option in registration order, with its current value.
+  std::vector<OptionRecord> records() const;
+  // {"name": value, ...} of every option: what --config reads back.
+  Json to_json() const;
+  // The arguments of the last parse() (argv[1..argc)) and the config files it applied.
+  const std::vector<std::string>& arguments() const { return arguments_; }
+  const std::vector<std::filesystem::path>& config_files() const { return config_files_; }
+
   std::string help() const;
   const std::string& program() const { return program_; }
 
  private:
+  enum class Kind { real, integer, string, path, real_list, integer_list, flag, on_off };
   struct Option {
     std::string name;
     std::string metavar;  // "REAL", "INT", "NAME", "DIR", "on|off", "" for flags
     std::string help;
     std::string default_text;
     std::string expected;  // "a positive real number", ...
-    // Parses and assigns; returns false if the text is not acceptable.
+    // Parses and assigns; returns false if the text is not acceptable. A flag takes "" (as
+    // given) or "off" (as not given, from a config's false).
     std::function<bool(std::string_view)> assign;
+    Kind kind = Kind::string;
+    std::function<Json()> value;  // the target's current value
+    bool given = false;
   };
   void add_option(Option o);
   const Option* find(std::string_view name) const;
+  Option* find(std::string_view name);
+  ParseStatus parse_arguments(int argc, const char* const* argv);
+  // Prints "<program>: <option>: <reason>" to stderr; returns usage_error.
+  ParseStatus report(std::string_view option, const std::string& reason) const;
+  // A config value as the text assign() takes, or nullopt for the wrong JSON type.
+  static std::optional<std::string> config_text(const Option& o, const Json& v);
+  static const char* kind_name(Kind k);  // "real", "integer", ... (OptionRecord::type)
 
   std::string program_, description_;
   std::vector<Option> options_;
+  std::vector<std::string> arguments_;
+  std::vector<std::filesystem::path> config_files_;
 };
+
 
 // --- Options every example takes ----------------------------------------------------------
 struct CoreOptions {
@@ -131,6 +186,11 @@ StepperOptions stepper_options(const CoreOptions& o);
 // (e.g. no psi damping), says so in one line on stderr and uses ARKODE_DORMAND_PRINCE_7_4_5
 // for that run (a scene that runs several variants keeps going; nothing is switched silently).
 StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, std::string_view program);
+
+// An interval option (e.g. --output-every) that must not exceed --t-end: a value the user gave
+// (was_given) that does is an error, "<option>: must not exceed --t-end" and exit 2; a default
+// that does follows the shorter run and becomes t_end.
+void limit_to_t_end(const OptionParser& p, std::string_view option, Real& value, Real t_end);
 
 // Sets the OpenMP thread count if threads > 0.
 void apply_thread_count(int threads);

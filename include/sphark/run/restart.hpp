@@ -42,8 +42,9 @@ struct RunControlOptions {
 // Registers --checkpoint-every (its help says the checkpoint goes to `where`), --restart and
 // --inject-nan-at.
 void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
-// After parsing: --output-every and --checkpoint-every must not exceed --t-end (p.fail, exit 2).
-void check_run_options(const OptionParser& p, const RunControlOptions& o, const CoreOptions& core);
+// After parsing: --output-every and --checkpoint-every given by the user must not exceed
+// --t-end (p.fail, exit 2); their defaults follow a shorter run (limit_to_t_end).
+void check_run_options(const OptionParser& p, RunControlOptions& o, CoreOptions& core);
 struct TimeLoopSettings;
 // The run-control part of a time loop's settings: the checkpoint file and its interval, the
 // checkpoint to resume from (nullptr: none) and the NaN injection of --inject-nan-at.

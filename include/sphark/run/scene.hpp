@@ -28,6 +28,7 @@
 #include "sphark/cli/options.hpp"
 #include "sphark/integrate/ode_system.hpp"
 #include "sphark/integrate/stepper_options.hpp"
+#include "sphark/io/paraview_state.hpp"
 #include "sphark/io/particle_frame.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/time_loop.hpp"
@@ -97,6 +98,16 @@ class Scene {
   virtual void finished(const std::string& /*run*/, SceneRun& /*r*/, const TimeLoopResult& /*result*/) {}
   virtual int report(const CoreOptions& /*core*/, const std::vector<std::string>& /*runs*/, bool /*all_ok*/) {
     return 0;
+  }
+  // The ParaView views of the runs done (paraview --state=<file>): state files relative to <out>,
+  // each with its views (series relative to the state file's folder). The driver writes them at
+  // the end, with the scene's natural colouring; a view that cannot be written is a warning.
+  struct ParaViewStateFile {
+    std::filesystem::path file;
+    std::vector<ParaViewView> views;
+  };
+  virtual std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& /*runs_done*/) const {
+    return {};
   }
 };
 

@@ -179,4 +179,12 @@ int CleaningDiscScene::report(const CoreOptions& core, const std::vector<std::st
   return 0;
 }
 
+// the runs with a VTK series, coloured by div B
+std::vector<Scene::ParaViewStateFile> CleaningDiscScene::paraview_states(const std::vector<std::string>& runs) const {
+  std::vector<ParaViewStateFile> states;
+  for (const std::string& r : runs)
+    if (variant(r).vtk) states.push_back({"view_" + r + ".pvsm", {{r + ".pvd", "div_B"}}});
+  return states;
+}
+
 }  // namespace sphark

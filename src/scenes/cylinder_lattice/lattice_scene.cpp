@@ -233,4 +233,11 @@ std::optional<int> CylinderLatticeScene::run_instead(const CoreOptions& core) {
   return run_lattice_ensemble(run_, maps_, v0s_, seeds_, core);
 }
 
+// per map: the real particles coloured by velocity
+std::vector<Scene::ParaViewStateFile> CylinderLatticeScene::paraview_states(const std::vector<std::string>& runs) const {
+  std::vector<ParaViewStateFile> states;
+  for (const std::string& m : runs) states.push_back({subdirectory(m) / "view.pvsm", {{"lattice.pvd", "velocity"}}});
+  return states;
+}
+
 }  // namespace sphark

@@ -150,4 +150,12 @@ int OrszagTangScene::report(const CoreOptions& core, const std::vector<std::stri
   return 0;
 }
 
+// per variant: div B beside the magnetic pressure
+std::vector<Scene::ParaViewStateFile> OrszagTangScene::paraview_states(const std::vector<std::string>& runs) const {
+  std::vector<ParaViewStateFile> states;
+  for (const std::string& v : runs)
+    states.push_back({subdirectory(v) / "view.pvsm", {{"orszag_tang.pvd", "div_B"}, {"orszag_tang.pvd", "magnetic_pressure"}}});
+  return states;
+}
+
 }  // namespace sphark

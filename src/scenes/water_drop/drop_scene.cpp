@@ -48,7 +48,7 @@ void WaterDropScene::add_options(OptionParser& p) {
 void WaterDropScene::check_options(const OptionParser& p, CoreOptions& core, const RunControlOptions&, bool) {
   config_.exact_initial_pressure = initial_pressure_ == "exact";
   if (config_.spacing > 0.5 * config_.radius) p.fail("--spacing", "must be at most half the radius");
-  if (diagnostics_every_ > core.t_end) p.fail("--diagnostics-every", "must not exceed --t-end");
+  limit_to_t_end(p, "--diagnostics-every", diagnostics_every_, core.t_end);
 }
 
 std::vector<std::string> WaterDropScene::run_names() const {
@@ -107,6 +107,13 @@ int WaterDropScene::report(const CoreOptions& core, const std::vector<std::strin
               core.out.c_str(), results_.size() > 1 ? "cleaned,control" : results_[0].first.c_str(), core.out.c_str(),
               results_[0].first.c_str());
   return 0;
+}
+
+// cleaned | control side by side, coloured by pressure
+std::vector<Scene::ParaViewStateFile> WaterDropScene::paraview_states(const std::vector<std::string>& runs) const {
+  ParaViewStateFile state{"view.pvsm", {}};
+  for (const std::string& r : runs) state.views.push_back({std::filesystem::path(r) / "drop.pvd", "pressure"});
+  return {state};
 }
 
 }  // namespace sphark

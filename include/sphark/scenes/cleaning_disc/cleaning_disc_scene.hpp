@@ -26,6 +26,7 @@ class CleaningDiscScene final : public Scene {
   std::unique_ptr<SceneRun> make_run(const std::string& run, const CoreOptions& core) override;
   void finished(const std::string& run, SceneRun& r, const TimeLoopResult& result) override;
   int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
+  std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& runs_done) const override;
 
   struct Summary {
     std::string name;

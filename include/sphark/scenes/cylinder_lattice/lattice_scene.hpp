@@ -30,6 +30,7 @@ class CylinderLatticeScene final : public Scene {
   std::unique_ptr<SceneRun> make_run(const std::string& map, const CoreOptions& core) override;
   void finished(const std::string& map, SceneRun& r, const TimeLoopResult& result) override;
   int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
+  std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& runs_done) const override;
 
   struct Outcome {
     std::string map;
