@@ -1,0 +1,83 @@
+#pragma once
+// Kernel-softened gravity of one particle (Price & Monaghan 2007, MNRAS 374, 1347; "PM07"), 3D.
+// A particle of mass m and smoothing length h is a mass distribution m W(r, h); its potential
+// and force per unit G m are
+//   phi(r, h)      = phi~(q) / h,    q = r / h           (-1/r exactly for r >= support * h)
+//   dphi/dr (r, h) = phi~'(q) / h^2  = M(<r) / (m r^2),  M(<r) = m 4 pi int_0^r W r'^2 dr'   (PM07 §2)
+//   dphi/dh (r, h) = -(phi~(q) + q phi~'(q)) / h^2       (0 for r >= support * h)
+// so the acceleration of a test mass at separation x (|x| = r) from the particle is
+// -G m dphi/dr x / r and its potential G m phi. The cubic-spline forms are PM07's Appendix A;
+// every kernel here is derived from its piecewise-polynomial shape (softening_polynomials.hpp):
+// CubicSpline<3>, QuinticSpline<3>, WendlandC2<3>, WendlandC4<3>, WendlandC6<3>.
+#include <cmath>
+
+#include "sphark/gravity/softening_polynomials.hpp"
+
+namespace sphark {
+
+template <class K>
+struct KernelSoftening {
+  using Table = softening_detail::SofteningTable<K>;
+  static constexpr Real support = K::support;
+
+  // phi(r, h): potential per unit G m (negative).
+  static Real phi(Real r, Real h) {
+    if (r >= support * h) return -1 / r;
+    const Real q = r / h;
+    const auto& p = piece(q);
+    const Real inner = p.pot_const + q * q * softening_detail::horner<Table::n_terms>(p.potential.c, q);
+    return (p.mass_const == 0 ? inner : inner - p.mass_const / q) / h;
+  }
+  // dphi/dr (r, h) (positive: the force is attractive).
+  static Real dphi_dr(Real r, Real h) {
+    if (r >= support * h) return 1 / (r * r);
+    const Real q = r / h;
+    const auto& p = piece(q);
+    const Real poly = q * softening_detail::horner<Table::n_terms>(p.force.c, q);
+    return (p.mass_const == 0 ? poly : poly + p.mass_const / (q * q)) / (h * h);
+  }
+  // (dphi/dr) / r, finite at r = 0: the pair-force coefficient (acceleration = -G m (this) x).
+  static Real force_over_r(Real r, Real h) {
+    if (r >= support * h) return 1 / (r * r * r);
+    const Real q = r / h;
+    const auto& p = piece(q);
+    const Real poly = softening_detail::horner<Table::n_terms>(p.force.c, q);
+    return (p.mass_const == 0 ? poly : poly + p.mass_const / (q * q * q)) / (h * h * h);
+  }
+  // dphi/dh (r, h) at fixed r: what the grad-h term zeta sums (PM07 §3).
+  static Real dphi_dh(Real r, Real h) {
+    if (r >= support * h) return 0;
+    const Real q = r / h;
+    const auto& p = piece(q);
+    return -(p.pot_const + q * q * softening_detail::horner<Table::n_terms>(p.dphi_dh.c, q)) / (h * h);
+  }
+
+ private:
+  static const softening_detail::SofteningPiece& piece(Real q) {
+    int k = 0;
+    while (k + 1 < Table::count && q >= Table::pieces[k].end) ++k;
+    return Table::pieces[k];
+  }
+};
+
+// The symmetric pair interaction of PM07 (§3): phi_ab = (phi(r, h_a) + phi(r, h_b)) / 2 and the
+// force coefficient ((dphi/dr)(r, h_a) + (dphi/dr)(r, h_b)) / (2 r), bitwise symmetric in (h_a, h_b).
+// Acceleration of a: -G m_b force_over_r (x_a - x_b); potential at a: G m_b phi.
+struct PairGravity {
+  Real force_over_r;
+  Real phi;
+};
+
+template <class K>
+inline PairGravity softened_pair(Real r2, Real h_a, Real h_b) {
+  const Real reach = K::support * (h_a > h_b ? h_a : h_b);
+  if (r2 >= reach * reach) {
+    const Real inv_r = 1 / std::sqrt(r2);
+    return {inv_r * inv_r * inv_r, -inv_r};
+  }
+  const Real r = std::sqrt(r2);
+  using S = KernelSoftening<K>;
+  return {0.5 * (S::force_over_r(r, h_a) + S::force_over_r(r, h_b)), 0.5 * (S::phi(r, h_a) + S::phi(r, h_b))};
+}
+
+}  // namespace sphark

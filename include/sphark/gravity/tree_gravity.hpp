@@ -1,0 +1,46 @@
+#pragma once
+// Tree gravity: kd-tree (gravity_tree.hpp), mutual dual-tree walk (dual_tree_walk.hpp) and
+// quadrupole-order cell-cell expansions (multipole.hpp), evaluated in gather form:
+//   1. per node A: its local expansion from every far partner B (add_far_field);
+//   2. top down: each node's expansion re-expanded about its children's centres and added;
+//   3. per particle a of leaf A: the expansion of A at x_a, plus every particle of A's near
+//      partner leaves (and of A itself) with the softened pair interaction (softened_pair),
+//      plus the self potential G m_a phi(0, h_a).
+// Every step is OpenMP-parallel over independent nodes or leaves and sums in a fixed order:
+// results do not depend on the thread count. The far and near lists are symmetric, and each
+// far interaction's total force on A is minus that on B to round-off (docs/gravity.md), so
+// linear momentum is conserved to round-off.
+#include <vector>
+
+#include "sphark/gravity/dual_tree_walk.hpp"
+#include "sphark/gravity/gravity_tree.hpp"
+#include "sphark/gravity/multipole.hpp"
+#include "sphark/gravity/self_gravity.hpp"
+
+namespace sphark {
+
+template <class K>
+class TreeGravity final : public SelfGravity {
+ public:
+  // Throws std::invalid_argument unless 0 < theta < 1 and leaf_size >= 1.
+  explicit TreeGravity(const GravityOptions& options);
+  Real compute(const GravitySources& src, Real* acceleration, Real* potential) override;
+  GravitySolver solver() const override { return GravitySolver::Tree; }
+  long allocations() const override { return tree_.allocations() + walk_.allocations() + allocations_; }
+
+  const GravityTree& tree() const { return tree_; }
+  const DualTreeWalk& walk() const { return walk_; }
+
+ private:
+  void far_field_expansions();
+  void pass_expansions_down();
+  void evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential) const;
+
+  GravityOptions opt_;
+  GravityTree tree_;
+  DualTreeWalk walk_;
+  std::vector<LocalExpansion> local_;
+  long allocations_ = 0;
+};
+
+}  // namespace sphark
