@@ -25,7 +25,7 @@ void GravityTree::build(const GravitySources& src, Real support, int leaf_size) 
   bool grew = resize_reporting_growth(order_, n);
   std::iota(order_.begin(), order_.end(), 0u);
   grew |= resize_reporting_growth(nodes_, n == 0 ? 0 : tree_node_count(n, static_cast<std::uint32_t>(leaf_size)));
-  for (auto* v : {&px_, &py_, &pz_, &pm_, &ph_}) grew |= resize_reporting_growth(*v, n);
+  for (auto* v : {&px_, &py_, &pz_, &pm_, &ph_, &phinv_}) grew |= resize_reporting_growth(*v, n);
   leaves_.clear();
   if (n > 0) {
     nodes_[0] = TreeNode{};
@@ -51,7 +51,7 @@ void GravityTree::build(const GravitySources& src, Real support, int leaf_size) 
   for (std::ptrdiff_t k = 0; k < np; ++k) {
     const std::uint32_t a = order_[k];
     px_[k] = src.x[3 * a], py_[k] = src.x[3 * a + 1], pz_[k] = src.x[3 * a + 2];
-    pm_[k] = src.m[a], ph_[k] = src.h[a];
+    pm_[k] = src.m[a], ph_[k] = src.h[a], phinv_[k] = 1 / src.h[a];
   }
   const auto nn = static_cast<std::ptrdiff_t>(nodes_.size());
 #pragma omp parallel for schedule(dynamic, 8)

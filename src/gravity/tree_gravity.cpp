@@ -1,9 +1,12 @@
 // Tree gravity evaluation (see sphark/gravity/tree_gravity.hpp).
 #include "sphark/gravity/tree_gravity.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "far_field_sums.hpp"
+#include "near_field_sums.hpp"
 #include "reuse_buffer.hpp"
 #include "sphark/gravity/direct_gravity.hpp"
 #include "sphark/gravity/kernel_softening.hpp"
@@ -18,36 +21,6 @@ struct FieldSum {
   Real ax = 0, ay = 0, az = 0, pot = 0;
 };
 
-// Particles [b0, b1) of a leaf none of whose pairs with a's leaf is inside a softening.
-void add_newtonian(const GravityTree& t, std::uint32_t b0, std::uint32_t b1, const Real xa[3], FieldSum& s) {
-  const Real *x = t.x(), *y = t.y(), *z = t.z(), *m = t.m();
-  Real fx = 0, fy = 0, fz = 0, pot = 0;
-#pragma omp simd reduction(+ : fx, fy, fz, pot)
-  for (std::uint32_t b = b0; b < b1; ++b) {
-    const Real dx = xa[0] - x[b], dy = xa[1] - y[b], dz = xa[2] - z[b];
-    const Real inv_r = 1 / std::sqrt(dx * dx + dy * dy + dz * dz);
-    const Real m_r = m[b] * inv_r, c = m_r * inv_r * inv_r;
-    fx += c * dx, fy += c * dy, fz += c * dz;
-    pot += m_r;
-  }
-  s.ax -= fx, s.ay -= fy, s.az -= fz, s.pot -= pot;
-}
-
-// Particles [b0, b1) (skipping slot `self`) with the softened pair interaction.
-template <class K>
-void add_softened(const GravityTree& t, std::uint32_t b0, std::uint32_t b1, std::uint32_t self, const Real xa[3],
-                  Real ha, FieldSum& s) {
-  const Real *x = t.x(), *y = t.y(), *z = t.z(), *m = t.m(), *h = t.h();
-  for (std::uint32_t b = b0; b < b1; ++b) {
-    if (b == self) continue;
-    const Real dx = xa[0] - x[b], dy = xa[1] - y[b], dz = xa[2] - z[b];
-    const PairGravity p = softened_pair<K>(dx * dx + dy * dy + dz * dz, ha, h[b]);
-    const Real c = m[b] * p.force_over_r;
-    s.ax -= c * dx, s.ay -= c * dy, s.az -= c * dz;
-    s.pot += m[b] * p.phi;
-  }
-}
-
 }  // namespace
 
 template <class K>
@@ -60,7 +33,12 @@ template <class K>
 Real TreeGravity<K>::compute(const GravitySources& src, Real* acceleration, Real* potential) {
   tree_.build(src, K::support, opt_.leaf_size);
   walk_.walk(tree_, opt_.theta);
-  if (gravity_detail::resize_reporting_growth(local_, tree_.nodes().size())) ++allocations_;
+  bool grew = gravity_detail::resize_reporting_growth(local_, tree_.nodes().size());
+  grew |= gravity_detail::resize_reporting_growth(runs_, walk_.near().partner.size());
+  grew |= gravity_detail::resize_reporting_growth(newtonian_runs_, tree_.nodes().size());
+  grew |= gravity_detail::resize_reporting_growth(all_runs_, tree_.nodes().size());
+  if (grew) ++allocations_;
+  merge_near_runs();
   far_field_expansions();
   pass_expansions_down();
   const std::vector<std::uint32_t>& leaves = tree_.leaves();
@@ -78,14 +56,9 @@ void TreeGravity<K>::far_field_expansions() {
   const auto nn = static_cast<std::ptrdiff_t>(nd.size());
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t i = 0; i < nn; ++i) {
-    LocalExpansion L;
-    const TreeNode& A = nd[i];
-    for (std::uint32_t k = far.begin(static_cast<std::uint32_t>(i)); k < far.end(static_cast<std::uint32_t>(i)); ++k) {
-      const TreeNode& B = nd[far.partner[k]];
-      const Real R[3] = {A.com[0] - B.com[0], A.com[1] - B.com[1], A.com[2] - B.com[2]};
-      add_far_field(L, R, B.mass, B.quad);
-    }
-    local_[i] = L;
+    const auto node = static_cast<std::uint32_t>(i);
+    local_[i] = gravity_detail::far_field_of_partners(nd[i], nd, far.partner.data() + far.begin(node),
+                                                      far.end(node) - far.begin(node));
   }
 }
 
@@ -102,26 +75,79 @@ void TreeGravity<K>::pass_expansions_down() {
   }
 }
 
+// Merges adjacent runs of [first, last) (sorted by begin); returns the new end.
+namespace {
+template <class Run>
+Run* merge_adjacent(Run* first, Run* last) {
+  if (first == last) return last;
+  Run* out = first;
+  for (Run* r = first + 1; r < last; ++r) {
+    if (r->begin == out->end)
+      out->end = r->end;
+    else
+      *++out = *r;
+  }
+  return out + 1;
+}
+}  // namespace
+
+// Per leaf, in its own slots of runs_: the Newtonian partner leaves' particle ranges merged,
+// then the others merged (partner lists are sorted, and leaves in pre-order hold ascending
+// particle ranges).
+template <class K>
+void TreeGravity<K>::merge_near_runs() {
+  const std::vector<TreeNode>& nd = tree_.nodes();
+  const PartnerLists& near = walk_.near();
+  const std::vector<std::uint32_t>& leaves = tree_.leaves();
+  const auto nl = static_cast<std::ptrdiff_t>(leaves.size());
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::ptrdiff_t j = 0; j < nl; ++j) {
+    const std::uint32_t leaf = leaves[j], b0 = near.begin(leaf), b1 = near.end(leaf);
+    ParticleRun* first = runs_.data() + b0;
+    ParticleRun* newtonian = first;
+    for (std::uint32_t k = b0; k < b1; ++k)  // the list is sorted by partner: so are the runs
+      if (near.partner[k] & DualTreeWalk::kNewtonian) {
+        const TreeNode& B = nd[near.partner[k] & ~DualTreeWalk::kNewtonian];
+        *newtonian++ = {B.begin, B.end};
+      }
+    ParticleRun* newtonian_end = merge_adjacent(first, newtonian);
+    ParticleRun* other = newtonian_end;
+    for (std::uint32_t k = b0; k < b1; ++k)
+      if (!(near.partner[k] & DualTreeWalk::kNewtonian)) *other++ = {nd[near.partner[k]].begin, nd[near.partner[k]].end};
+    ParticleRun* all_end = merge_adjacent(newtonian_end, other);
+    newtonian_runs_[leaf] = static_cast<std::uint32_t>(newtonian_end - first);
+    all_runs_[leaf] = static_cast<std::uint32_t>(all_end - first);
+  }
+}
+
 // Step 3: the particles of one leaf, written to their input slots.
 template <class K>
 void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential) const {
   const TreeNode& A = tree_.nodes()[leaf];
   const PartnerLists& near = walk_.near();
   const Real *x = tree_.x(), *y = tree_.y(), *z = tree_.z(), *m = tree_.m(), *h = tree_.h();
+  const gravity_detail::ParticleArrays arrays{x, y, z, m, h, tree_.h_inv()};
+  constexpr std::uint32_t kChunk = 64;  // softened runs in chunks: the inside list lives on the stack
   for (std::uint32_t a = A.begin; a < A.end; ++a) {
     const Real xa[3] = {x[a], y[a], z[a]};
     const Real d[3] = {xa[0] - A.com[0], xa[1] - A.com[1], xa[2] - A.com[2]};
     Real value, grad[3];
     value_and_gradient_at(local_[leaf], d, value, grad);
     FieldSum s{grad[0], grad[1], grad[2], -value + m[a] * KernelSoftening<K>::phi(0, h[a])};
-    for (std::uint32_t k = near.begin(leaf); k < near.end(leaf); ++k) {
-      const std::uint32_t entry = near.partner[k], b = entry & ~DualTreeWalk::kNewtonian;
-      const TreeNode& B = tree_.nodes()[b];
-      if (entry & DualTreeWalk::kNewtonian)
-        add_newtonian(tree_, B.begin, B.end, xa, s);
-      else
-        add_softened<K>(tree_, B.begin, B.end, a, xa, h[a], s);
-    }
+    const ParticleRun* runs = runs_.data() + near.begin(leaf);
+    gravity_detail::NewtonianSums newtonian, softened;
+    for (std::uint32_t k = 0; k < newtonian_runs_[leaf]; ++k)
+      gravity_detail::add_newtonian_run(arrays, runs[k].begin, runs[k].end, xa, 0, 0, a, newtonian, nullptr);
+    for (std::uint32_t k = newtonian_runs_[leaf]; k < all_runs_[leaf]; ++k)
+      for (std::uint32_t c0 = runs[k].begin; c0 < runs[k].end; c0 += kChunk) {
+        std::uint32_t inside[kChunk];
+        const std::uint32_t c1 = std::min(runs[k].end, c0 + kChunk);
+        const std::uint32_t n = gravity_detail::add_newtonian_run(arrays, c0, c1, xa, K::support * h[a], K::support,
+                                                                  a, newtonian, inside);
+        gravity_detail::add_softened_list<K>(arrays, inside, n, xa, h[a], arrays.h_inv[a], softened);
+      }
+    s.ax -= newtonian.fx + softened.fx, s.ay -= newtonian.fy + softened.fy, s.az -= newtonian.fz + softened.fz;
+    s.pot += softened.pot - newtonian.pot;
     const std::uint32_t i = tree_.order()[a];
     acceleration[3 * i] = opt_.G * s.ax;
     acceleration[3 * i + 1] = opt_.G * s.ay;

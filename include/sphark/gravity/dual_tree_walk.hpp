@@ -4,11 +4,12 @@
 //   far     if r_A + r_B < theta |z_A - z_B|  and  |z_A - z_B| - r_A - r_B >= max(reach_A, reach_B)
 //           (no particle of A is inside the softening of one of B or vice versa): multipoles;
 //   near    if not far and both are leaves: every particle pair directly, softened where needed
-//           (flagged Newtonian when the second condition holds: no pair is inside a softening);
+//           (flagged Newtonian when no pair of their particles is inside a softening);
 //   split   otherwise: the node with the larger radius (a non-leaf) into its two children;
 //   (A, A)  leaf: near with itself; otherwise (L, L), (R, R), (L, R).
 // Both tests are symmetric in A and B, so the lists are symmetric: B is in A's far (near) list
-// iff A is in B's. Each unordered pair is found once; both nodes list it.
+// iff A is in B's. Each unordered pair is found once; both nodes list it. The near lists are
+// sorted by partner index (so that near partner leaves form runs of consecutive particles).
 //
 // Parallel: the walk is expanded breadth first into a fixed number of independent node pairs
 // (kJobs, not the thread count), each walked depth first into its own buffers; the lists are
@@ -43,6 +44,13 @@ class DualTreeWalk {
   std::size_t near_pairs() const { return near_pairs_; }  // unordered near leaf pairs (self included)
   long allocations() const { return allocations_; }
 
+  // What the walk reads of a node (one cache line).
+  struct WalkNode {
+    Real com[3], radius, reach;
+    std::uint32_t count, left, right;
+    bool leaf() const { return left == 0; }
+  };
+
  private:
   struct NodePair {
     std::uint32_t a, b;
@@ -53,11 +61,14 @@ class DualTreeWalk {
   enum class Step { Far, Near, Self, SplitA, SplitB };
   Step classify(std::uint32_t a, std::uint32_t b) const;
   void record(Step s, NodePair p, Found& out) const;
+  void record_leaf_pairs(std::uint32_t a, std::uint32_t b, Found& out) const;
   void walk_depth_first(NodePair p, Found& out) const;
   void expand_breadth_first(Found& out);
-  void assemble(PartnerLists& lists, std::vector<NodePair> Found::*which, bool newtonian_flags);
+  std::size_t assemble(PartnerLists& lists, std::vector<NodePair> Found::*which, std::uint32_t index_mask,
+                       bool sorted);
+  std::size_t capacity() const;
 
-  const std::vector<TreeNode>* nodes_ = nullptr;
+  std::vector<WalkNode> nodes_;
   Real theta_ = 0.5;
   std::vector<NodePair> queue_;
   std::vector<Found> found_;  // [0]: found while expanding; [1 + j]: job j

@@ -7,7 +7,7 @@
 //
 // Per node: mass, centre of mass z, second moment Q = sum m (x - z)(x - z)^T, radius
 // r = max |x - z| (exact, over its particles) and reach = support * max h (how far the softening
-// of its particles extends). Particles are copied into tree order (structure of arrays).
+// of its particles extends). Particles are copied into tree order (structure of arrays, with 1/h).
 // A rebuild with the same particle count reuses every buffer.
 #include <cstdint>
 #include <vector>
@@ -43,6 +43,7 @@ class GravityTree {
   const Real* z() const { return pz_.data(); }
   const Real* m() const { return pm_.data(); }
   const Real* h() const { return ph_.data(); }
+  const Real* h_inv() const { return phinv_.data(); }  // 1/h
   std::size_t particles() const { return order_.size(); }
   long allocations() const { return allocations_; }
 
@@ -52,7 +53,7 @@ class GravityTree {
 
   std::vector<TreeNode> nodes_;
   std::vector<std::uint32_t> order_, leaves_, level_, next_level_;
-  std::vector<Real> px_, py_, pz_, pm_, ph_;
+  std::vector<Real> px_, py_, pz_, pm_, ph_, phinv_;
   long allocations_ = 0;
 };
 

@@ -52,7 +52,7 @@ struct KernelSoftening {
     return -(p.pot_const + q * q * softening_detail::horner<Table::n_terms>(p.dphi_dh.c, q)) / (h * h);
   }
 
- private:
+  // The polynomial piece that holds q (q < support).
   static const softening_detail::SofteningPiece& piece(Real q) {
     int k = 0;
     while (k + 1 < Table::count && q >= Table::pieces[k].end) ++k;
@@ -68,16 +68,38 @@ struct PairGravity {
   Real phi;
 };
 
+// One particle (smoothing length h, h_inv = 1/h) seen at r (inv_r = 1/r, or 0 at r = 0): on
+// its piece, force_over_r = f(q) / h^3 + A_k / r^3 and phi = v(q) / h - A_k / r (A_k = 0 on the
+// innermost piece, so r = 0 is fine): one piece lookup, no division.
 template <class K>
-inline PairGravity softened_pair(Real r2, Real h_a, Real h_b) {
+inline PairGravity one_side(Real r, Real inv_r, Real h, Real h_inv) {
+  if (r >= K::support * h) return {inv_r * inv_r * inv_r, -inv_r};
+  using Table = typename KernelSoftening<K>::Table;
+  const Real q = r * h_inv;
+  const softening_detail::SofteningPiece& p = KernelSoftening<K>::piece(q);
+  const Real f = softening_detail::horner<Table::n_terms>(p.force.c, q);
+  const Real v = p.pot_const + q * q * softening_detail::horner<Table::n_terms>(p.potential.c, q);
+  const Real h_inv3 = h_inv * h_inv * h_inv;
+  if (p.mass_const == 0) return {f * h_inv3, v * h_inv};
+  return {f * h_inv3 + p.mass_const * (inv_r * inv_r * inv_r), v * h_inv - p.mass_const * inv_r};
+}
+
+// The pair at squared separation r2, with both smoothing lengths and their inverses.
+template <class K>
+inline PairGravity softened_pair(Real r2, Real h_a, Real h_a_inv, Real h_b, Real h_b_inv) {
   const Real reach = K::support * (h_a > h_b ? h_a : h_b);
   if (r2 >= reach * reach) {
     const Real inv_r = 1 / std::sqrt(r2);
     return {inv_r * inv_r * inv_r, -inv_r};
   }
-  const Real r = std::sqrt(r2);
-  using S = KernelSoftening<K>;
-  return {0.5 * (S::force_over_r(r, h_a) + S::force_over_r(r, h_b)), 0.5 * (S::phi(r, h_a) + S::phi(r, h_b))};
+  const Real r = std::sqrt(r2), inv_r = r > 0 ? 1 / r : 0;
+  const PairGravity a = one_side<K>(r, inv_r, h_a, h_a_inv), b = one_side<K>(r, inv_r, h_b, h_b_inv);
+  return {0.5 * (a.force_over_r + b.force_over_r), 0.5 * (a.phi + b.phi)};
+}
+
+template <class K>
+inline PairGravity softened_pair(Real r2, Real h_a, Real h_b) {
+  return softened_pair<K>(r2, h_a, 1 / h_a, h_b, 1 / h_b);
 }
 
 }  // namespace sphark

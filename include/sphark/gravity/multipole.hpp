@@ -21,49 +21,59 @@
 
 namespace sphark {
 
-struct LocalExpansion {
-  Real c0 = 0;
-  Real c1[3] = {0, 0, 0};
-  Real c2[6] = {0, 0, 0, 0, 0, 0};
-  Real c3[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+// T: Real, or a two-lane SIMD type (src/gravity/far_field_sums.hpp) for two sources at once.
+template <class T>
+struct LocalExpansionT {
+  T c0{};
+  T c1[3]{};
+  T c2[6]{};
+  T c3[10]{};
 };
+using LocalExpansion = LocalExpansionT<Real>;
 
-// Adds the field of a source (mass, second moment quad in sym2) at separation R = z_A - z_B.
-inline void add_far_field(LocalExpansion& L, const Real R[3], Real mass, const Real quad[6]) {
-  const Real X = R[0], Y = R[1], Z = R[2];
-  const Real r2 = X * X + Y * Y + Z * Z;
-  const Real ir = 1 / std::sqrt(r2), ir2 = ir * ir, ir3 = ir * ir2, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
+// Adds the field of a source (mass, second moment quad in sym2) at separation R = z_A - z_B,
+// given ir = 1 / |R|.
+template <class T>
+inline void add_far_field(LocalExpansionT<T>& L, const T R[3], T ir, T mass, const T quad[6]) {
+  const T X = R[0], Y = R[1], Z = R[2];
+  const T ir2 = ir * ir, ir3 = ir * ir2, ir5 = ir3 * ir2, ir7 = ir5 * ir2, ir9 = ir7 * ir2;
   // Q contractions: q = R.Q.R, t = tr Q, QR = Q R
-  const Real QRx = quad[0] * X + quad[1] * Y + quad[2] * Z;
-  const Real QRy = quad[1] * X + quad[3] * Y + quad[4] * Z;
-  const Real QRz = quad[2] * X + quad[4] * Y + quad[5] * Z;
-  const Real q = X * QRx + Y * QRy + Z * QRz, t = quad[0] + quad[3] + quad[5];
-  L.c0 += mass * ir + 0.5 * (3 * q * ir5 - t * ir3);
+  const T QRx = quad[0] * X + quad[1] * Y + quad[2] * Z;
+  const T QRy = quad[1] * X + quad[3] * Y + quad[4] * Z;
+  const T QRz = quad[2] * X + quad[4] * Y + quad[5] * Z;
+  const T q = X * QRx + Y * QRy + Z * QRz, t = quad[0] + quad[3] + quad[5];
+  L.c0 += mass * ir + 0.5 * (3.0 * q * ir5 - t * ir3);
   // (1/2) Q:D3 = (1/2) [-15 R q / r^7 + 3 (R t + 2 QR) / r^5]
-  const Real qr = -7.5 * q * ir7 + 1.5 * t * ir5, qq = 3 * ir5;
-  const Real m3 = mass * ir3;
-  L.c1[0] += -m3 * X + qr * X + qq * QRx;
-  L.c1[1] += -m3 * Y + qr * Y + qq * QRy;
-  L.c1[2] += -m3 * Z + qr * Z + qq * QRz;
-  const Real m5 = 3 * mass * ir5;
-  L.c2[0] += m5 * X * X - m3;
-  L.c2[1] += m5 * X * Y;
-  L.c2[2] += m5 * X * Z;
-  L.c2[3] += m5 * Y * Y - m3;
-  L.c2[4] += m5 * Y * Z;
-  L.c2[5] += m5 * Z * Z - m3;
-  const Real m7 = -15 * mass * ir7;
-  const Real XX = X * X, YY = Y * Y, ZZ = Z * Z;
-  L.c3[0] += m7 * XX * X + 3 * m5 * X;
+  const T qr = -7.5 * q * ir7 + 1.5 * t * ir5, qq = 3.0 * ir5;
+  const T m3 = mass * ir3;
+  L.c1[0] += qr * X + qq * QRx - m3 * X;
+  L.c1[1] += qr * Y + qq * QRy - m3 * Y;
+  L.c1[2] += qr * Z + qq * QRz - m3 * Z;
+  const T m5 = 3.0 * mass * ir5;
+  // (1/2) Q:D4 = (1/2) [105 RR q / r^9 - 15 (I q + 2 (R QR + QR R) + RR t) / r^7 + 3 (I t + 2 Q) / r^5]
+  const T a = 52.5 * q * ir9 - 7.5 * t * ir7 + m5, b = -15.0 * ir7, dg = -7.5 * q * ir7 + 1.5 * t * ir5 - m3, qf = qq;
+  L.c2[0] += a * X * X + 2.0 * b * X * QRx + dg + qf * quad[0];
+  L.c2[1] += a * X * Y + b * (X * QRy + Y * QRx) + qf * quad[1];
+  L.c2[2] += a * X * Z + b * (X * QRz + Z * QRx) + qf * quad[2];
+  L.c2[3] += a * Y * Y + 2.0 * b * Y * QRy + dg + qf * quad[3];
+  L.c2[4] += a * Y * Z + b * (Y * QRz + Z * QRy) + qf * quad[4];
+  L.c2[5] += a * Z * Z + 2.0 * b * Z * QRz + dg + qf * quad[5];
+  const T m7 = -15.0 * mass * ir7;
+  const T XX = X * X, YY = Y * Y, ZZ = Z * Z;
+  L.c3[0] += m7 * XX * X + 3.0 * m5 * X;
   L.c3[1] += m7 * XX * Y + m5 * Y;
   L.c3[2] += m7 * XX * Z + m5 * Z;
   L.c3[3] += m7 * YY * X + m5 * X;
   L.c3[4] += m7 * X * Y * Z;
   L.c3[5] += m7 * ZZ * X + m5 * X;
-  L.c3[6] += m7 * YY * Y + 3 * m5 * Y;
+  L.c3[6] += m7 * YY * Y + 3.0 * m5 * Y;
   L.c3[7] += m7 * YY * Z + m5 * Z;
   L.c3[8] += m7 * ZZ * Y + m5 * Y;
-  L.c3[9] += m7 * ZZ * Z + 3 * m5 * Z;
+  L.c3[9] += m7 * ZZ * Z + 3.0 * m5 * Z;
+}
+
+inline void add_far_field(LocalExpansion& L, const Real R[3], Real mass, const Real quad[6]) {
+  add_far_field<Real>(L, R, 1 / std::sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2]), mass, quad);
 }
 
 // v_ij = sum_k c3_ijk d_k (sym3 -> sym2)

@@ -5,7 +5,9 @@
 //   2. top down: each node's expansion re-expanded about its children's centres and added;
 //   3. per particle a of leaf A: the expansion of A at x_a, plus every particle of A's near
 //      partner leaves (and of A itself) with the softened pair interaction (softened_pair),
-//      plus the self potential G m_a phi(0, h_a).
+//      plus the self potential G m_a phi(0, h_a). The near leaves of A are merged into runs of
+//      consecutive particles (sorted by position in tree order), Newtonian-only runs apart,
+//      so that the inner loops are long and vectorise.
 // Every step is OpenMP-parallel over independent nodes or leaves and sums in a fixed order:
 // results do not depend on the thread count. The far and near lists are symmetric, and each
 // far interaction's total force on A is minus that on B to round-off (docs/gravity.md), so
@@ -34,12 +36,20 @@ class TreeGravity final : public SelfGravity {
  private:
   void far_field_expansions();
   void pass_expansions_down();
+  void merge_near_runs();
   void evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential) const;
 
   GravityOptions opt_;
   GravityTree tree_;
   DualTreeWalk walk_;
   std::vector<LocalExpansion> local_;
+  struct ParticleRun {
+    std::uint32_t begin, end;
+  };
+  // Leaf i's runs: runs_[near.begin(i) ..): newtonian_runs_[i] Newtonian-only runs, then up to
+  // all_runs_[i] runs that may hold softened pairs.
+  std::vector<ParticleRun> runs_;
+  std::vector<std::uint32_t> newtonian_runs_, all_runs_;
   long allocations_ = 0;
 };
 
