@@ -2,21 +2,25 @@
 // The inner loops of the tree's near field, two pairs at a time with SSE2 (std::sqrt in a plain
 // loop does not vectorise while it may set errno; the piecewise softening branches would
 // mispredict), with scalar code for an odd last pair and for targets without SSE2:
-//   add_newtonian_run   f += sum_b m_b (x_a - x_b) / r^3,  p += sum_b m_b / r  over a run of
-//                       particles; with a softening reach (support > 0) the pairs with
-//                       r < support * max(h_a, h_b) are left out and listed in `inside`
-//                       (b = self is left out and not listed);
+//   add_newtonian_runs  f += sum_b m_b (x_a - x_b) / r^3,  p += sum_b m_b / r  over runs of
+//                       particles; in masked runs the pairs with r < support * max(h_a, h_b)
+//                       are left out and listed (b = self is left out and not listed);
+//                       on CPUs with AVX2 and FMA four lanes (near_field_avx2.cpp);
 //   add_softened_list   the softened pair interaction (kernel_softening.hpp) over such a list.
-// The order of the sums is fixed by the run or list alone.
+// The order of the sums is fixed by the runs or the list alone (on a given CPU).
 #include <array>
 #include <cmath>
 #include <cstdint>
 
 #include "sphark/core/types.hpp"
+#include "sphark/gravity/gravity_tree.hpp"
 #include "sphark/gravity/kernel_softening.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SPHARK_GRAVITY_HAVE_AVX2 1  // add_newtonian_run_avx2 (near_field_avx2.cpp), chosen at run time
 #endif
 
 namespace sphark::gravity_detail {
@@ -49,37 +53,80 @@ inline bool add_newtonian_pair(const ParticleArrays& p, std::uint32_t b, const R
   return true;
 }
 
-// Adds the run [b0, b1) to s; returns how many slots it wrote to inside (support > 0 only).
-inline std::uint32_t add_newtonian_run(const ParticleArrays& p, std::uint32_t b0, std::uint32_t b1, const Real xa[3],
-                                       Real reach_a, Real support, std::uint32_t self, NewtonianSums& s,
-                                       std::uint32_t* inside) {
-  std::uint32_t n_inside = 0, b = b0;
+// Appends b + l for every set bit l of `lanes` (up to 4 lanes) except b + l = self to inside,
+// without branching on the bits: four slots are always written (inside needs 4 spare slots).
+inline std::uint32_t list_inside(unsigned lanes, std::uint32_t b, std::uint32_t self, std::uint32_t* inside,
+                                 std::uint32_t n) {
+  static constexpr std::uint8_t kOffsets[16][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0},
+                                                   {2, 0, 0, 0}, {0, 2, 0, 0}, {1, 2, 0, 0}, {0, 1, 2, 0},
+                                                   {3, 0, 0, 0}, {0, 3, 0, 0}, {1, 3, 0, 0}, {0, 1, 3, 0},
+                                                   {2, 3, 0, 0}, {0, 2, 3, 0}, {1, 2, 3, 0}, {0, 1, 2, 3}};
+  static constexpr std::uint8_t kCount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+  if (self - b < 4) lanes &= ~(1u << (self - b));
+  for (int l = 0; l < 4; ++l) inside[n + l] = b + kOffsets[lanes][l];
+  return n + kCount[lanes];
+}
+
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+// True if the CPU has AVX2 and FMA and the environment does not say SPHARK_GRAVITY_SIMD=sse2.
+bool cpu_has_avx2_fma();
+std::uint32_t add_newtonian_runs_avx2(const ParticleArrays& p, const ParticleRun* runs, std::uint32_t n_newtonian,
+                                      std::uint32_t n_runs, const Real xa[3], Real reach_a, Real support,
+                                      std::uint32_t self, NewtonianSums& s, std::uint32_t* inside);
+#endif
+
 #if defined(__SSE2__)
+inline Real lane_sum(__m128d v) { return _mm_cvtsd_f64(v) + _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); }
+
+// One run on two lanes into acc (fx, fy, fz, pot); Masked: pairs inside a reach listed instead.
+template <bool Masked>
+inline void newtonian_run_sse2(const ParticleArrays& p, ParticleRun run, const Real xa[3], Real reach_a,
+                               Real support, std::uint32_t self, __m128d acc[4], NewtonianSums& s,
+                               std::uint32_t* inside, std::uint32_t& n_inside) {
   const __m128d X = _mm_set1_pd(xa[0]), Y = _mm_set1_pd(xa[1]), Z = _mm_set1_pd(xa[2]), one = _mm_set1_pd(1);
-  const __m128d S = _mm_set1_pd(support), RA = _mm_set1_pd(reach_a);
-  __m128d fx = _mm_setzero_pd(), fy = fx, fz = fx, pot = fx;
-  for (; b + 2 <= b1; b += 2) {
+  std::uint32_t b = run.begin;
+  for (; b + 2 <= run.end; b += 2) {
     const __m128d dx = X - _mm_loadu_pd(p.x + b), dy = Y - _mm_loadu_pd(p.y + b), dz = Z - _mm_loadu_pd(p.z + b);
     __m128d r2 = dx * dx + dy * dy + dz * dz, m = _mm_loadu_pd(p.m + b);
-    if (support > 0) {
-      const __m128d reach = _mm_max_pd(RA, S * _mm_loadu_pd(p.h + b));
+    if constexpr (Masked) {
+      const __m128d reach = _mm_max_pd(_mm_set1_pd(reach_a), _mm_set1_pd(support) * _mm_loadu_pd(p.h + b));
       const __m128d outside = _mm_cmpge_pd(r2, reach * reach);
-      const int bits = _mm_movemask_pd(outside);
-      if (!(bits & 1) && b != self) inside[n_inside++] = b;
-      if (!(bits & 2) && b + 1 != self) inside[n_inside++] = b + 1;
+      n_inside = list_inside(0x3 & ~_mm_movemask_pd(outside), b, self, inside, n_inside);
       m = _mm_and_pd(outside, m);
       r2 = _mm_or_pd(_mm_and_pd(outside, r2), _mm_andnot_pd(outside, one));
     }
     const __m128d inv_r = one / _mm_sqrt_pd(r2), m_r = m * inv_r, c = m_r * inv_r * inv_r;
-    fx += c * dx, fy += c * dy, fz += c * dz, pot += m_r;
+    acc[0] += c * dx, acc[1] += c * dy, acc[2] += c * dz, acc[3] += m_r;
   }
-  alignas(16) Real lanes[4][2];
-  _mm_store_pd(lanes[0], fx), _mm_store_pd(lanes[1], fy), _mm_store_pd(lanes[2], fz), _mm_store_pd(lanes[3], pot);
-  s.fx += lanes[0][0] + lanes[0][1], s.fy += lanes[1][0] + lanes[1][1];
-  s.fz += lanes[2][0] + lanes[2][1], s.pot += lanes[3][0] + lanes[3][1];
+  if (b < run.end && !add_newtonian_pair(p, b, xa, reach_a, Masked ? support : 0, s) && b != self)
+    inside[n_inside++] = b;
+}
 #endif
-  for (; b < b1; ++b)
-    if (!add_newtonian_pair(p, b, xa, reach_a, support, s) && b != self) inside[n_inside++] = b;
+
+// The Newtonian near field of one particle over its runs: runs[0 .. n_newtonian) have no pair
+// inside a softening; in runs[n_newtonian .. n_runs) the pairs inside a reach
+// (r < support * max(h_a, h_b)) are left out and listed in inside (capacity: the particles of
+// those runs, plus 4; b = self neither added nor listed). Returns how many were listed.
+inline std::uint32_t add_newtonian_runs(const ParticleArrays& p, const ParticleRun* runs, std::uint32_t n_newtonian,
+                                        std::uint32_t n_runs, const Real xa[3], Real reach_a, Real support,
+                                        std::uint32_t self, NewtonianSums& s, std::uint32_t* inside) {
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+  if (cpu_has_avx2_fma())
+    return add_newtonian_runs_avx2(p, runs, n_newtonian, n_runs, xa, reach_a, support, self, s, inside);
+#endif
+  std::uint32_t n_inside = 0;
+#if defined(__SSE2__)
+  __m128d acc[4] = {_mm_setzero_pd(), _mm_setzero_pd(), _mm_setzero_pd(), _mm_setzero_pd()};
+  for (std::uint32_t k = 0; k < n_newtonian; ++k)
+    newtonian_run_sse2<false>(p, runs[k], xa, reach_a, support, self, acc, s, inside, n_inside);
+  for (std::uint32_t k = n_newtonian; k < n_runs; ++k)
+    newtonian_run_sse2<true>(p, runs[k], xa, reach_a, support, self, acc, s, inside, n_inside);
+  s.fx += lane_sum(acc[0]), s.fy += lane_sum(acc[1]), s.fz += lane_sum(acc[2]), s.pot += lane_sum(acc[3]);
+#else
+  for (std::uint32_t k = 0; k < n_runs; ++k)
+    for (std::uint32_t b = runs[k].begin; b < runs[k].end; ++b)
+      if (!add_newtonian_pair(p, b, xa, reach_a, k < n_newtonian ? 0 : support, s) && b != self) inside[n_inside++] = b;
+#endif
   return n_inside;
 }
 
@@ -141,10 +188,7 @@ inline void add_softened_list(const ParticleArrays& p, const std::uint32_t* insi
     const __m128d c = m * (half * (sa.force_over_r + sb.force_over_r));
     fx += c * dx, fy += c * dy, fz += c * dz, pot += m * (half * (sa.phi + sb.phi));
   }
-  alignas(16) Real lanes[4][2];
-  _mm_store_pd(lanes[0], fx), _mm_store_pd(lanes[1], fy), _mm_store_pd(lanes[2], fz), _mm_store_pd(lanes[3], pot);
-  s.fx += lanes[0][0] + lanes[0][1], s.fy += lanes[1][0] + lanes[1][1];
-  s.fz += lanes[2][0] + lanes[2][1], s.pot += lanes[3][0] + lanes[3][1];
+  s.fx += lane_sum(fx), s.fy += lane_sum(fy), s.fz += lane_sum(fz), s.pot += lane_sum(pot);
 #endif
   for (; k < n; ++k) {
     const std::uint32_t b = inside[k];

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <omp.h>
 #include <stdexcept>
 
 #include "far_field_sums.hpp"
@@ -43,8 +44,18 @@ Real TreeGravity<K>::compute(const GravitySources& src, Real* acceleration, Real
   pass_expansions_down();
   const std::vector<std::uint32_t>& leaves = tree_.leaves();
   const auto nl = static_cast<std::ptrdiff_t>(leaves.size());
-#pragma omp parallel for schedule(dynamic, 4)
-  for (std::ptrdiff_t k = 0; k < nl; ++k) evaluate_leaf(leaves[k], acceleration, potential);
+  if (inside_.size() < static_cast<std::size_t>(omp_get_max_threads())) {
+    inside_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    ++allocations_;
+  }
+  for (auto& buffer : inside_)
+    if (gravity_detail::resize_reporting_growth(buffer, masked_length_ + 4)) ++allocations_;
+#pragma omp parallel
+  {
+    std::uint32_t* inside = inside_[static_cast<std::size_t>(omp_get_thread_num())].data();
+#pragma omp for schedule(dynamic, 4)
+    for (std::ptrdiff_t k = 0; k < nl; ++k) evaluate_leaf(leaves[k], acceleration, potential, inside);
+  }
   return potential_energy(src.m, potential, src.n);
 }
 
@@ -100,7 +111,8 @@ void TreeGravity<K>::merge_near_runs() {
   const PartnerLists& near = walk_.near();
   const std::vector<std::uint32_t>& leaves = tree_.leaves();
   const auto nl = static_cast<std::ptrdiff_t>(leaves.size());
-#pragma omp parallel for schedule(dynamic, 64)
+  std::uint32_t masked = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : masked)
   for (std::ptrdiff_t j = 0; j < nl; ++j) {
     const std::uint32_t leaf = leaves[j], b0 = near.begin(leaf), b1 = near.end(leaf);
     ParticleRun* first = runs_.data() + b0;
@@ -115,19 +127,23 @@ void TreeGravity<K>::merge_near_runs() {
     for (std::uint32_t k = b0; k < b1; ++k)
       if (!(near.partner[k] & DualTreeWalk::kNewtonian)) *other++ = {nd[near.partner[k]].begin, nd[near.partner[k]].end};
     ParticleRun* all_end = merge_adjacent(newtonian_end, other);
+    std::uint32_t length = 0;
+    for (const ParticleRun* r = newtonian_end; r < all_end; ++r) length += r->end - r->begin;
+    masked = std::max(masked, length);
     newtonian_runs_[leaf] = static_cast<std::uint32_t>(newtonian_end - first);
     all_runs_[leaf] = static_cast<std::uint32_t>(all_end - first);
   }
+  masked_length_ = masked;
 }
 
 // Step 3: the particles of one leaf, written to their input slots.
 template <class K>
-void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential) const {
+void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential,
+                                   std::uint32_t* inside) const {
   const TreeNode& A = tree_.nodes()[leaf];
   const PartnerLists& near = walk_.near();
   const Real *x = tree_.x(), *y = tree_.y(), *z = tree_.z(), *m = tree_.m(), *h = tree_.h();
   const gravity_detail::ParticleArrays arrays{x, y, z, m, h, tree_.h_inv()};
-  constexpr std::uint32_t kChunk = 64;  // softened runs in chunks: the inside list lives on the stack
   for (std::uint32_t a = A.begin; a < A.end; ++a) {
     const Real xa[3] = {x[a], y[a], z[a]};
     const Real d[3] = {xa[0] - A.com[0], xa[1] - A.com[1], xa[2] - A.com[2]};
@@ -136,16 +152,9 @@ void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real*
     FieldSum s{grad[0], grad[1], grad[2], -value + m[a] * KernelSoftening<K>::phi(0, h[a])};
     const ParticleRun* runs = runs_.data() + near.begin(leaf);
     gravity_detail::NewtonianSums newtonian, softened;
-    for (std::uint32_t k = 0; k < newtonian_runs_[leaf]; ++k)
-      gravity_detail::add_newtonian_run(arrays, runs[k].begin, runs[k].end, xa, 0, 0, a, newtonian, nullptr);
-    for (std::uint32_t k = newtonian_runs_[leaf]; k < all_runs_[leaf]; ++k)
-      for (std::uint32_t c0 = runs[k].begin; c0 < runs[k].end; c0 += kChunk) {
-        std::uint32_t inside[kChunk];
-        const std::uint32_t c1 = std::min(runs[k].end, c0 + kChunk);
-        const std::uint32_t n = gravity_detail::add_newtonian_run(arrays, c0, c1, xa, K::support * h[a], K::support,
-                                                                  a, newtonian, inside);
-        gravity_detail::add_softened_list<K>(arrays, inside, n, xa, h[a], arrays.h_inv[a], softened);
-      }
+    const std::uint32_t n = gravity_detail::add_newtonian_runs(arrays, runs, newtonian_runs_[leaf], all_runs_[leaf], xa,
+                                                               K::support * h[a], K::support, a, newtonian, inside);
+    gravity_detail::add_softened_list<K>(arrays, inside, n, xa, h[a], arrays.h_inv[a], softened);
     s.ax -= newtonian.fx + softened.fx, s.ay -= newtonian.fy + softened.fy, s.az -= newtonian.fz + softened.fz;
     s.pot += softened.pot - newtonian.pot;
     const std::uint32_t i = tree_.order()[a];

@@ -6,6 +6,7 @@
 // (PM07 §3). The pair forces m_a m_b f_ab (x_a - x_b) are antisymmetric: momentum is conserved
 // to the round-off of the sums. OpenMP over a; no result depends on the thread count.
 #include "sphark/gravity/self_gravity.hpp"
+#include "sphark/kernels/kernels.hpp"
 
 namespace sphark {
 

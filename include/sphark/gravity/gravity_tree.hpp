@@ -28,6 +28,11 @@ struct TreeNode {
   std::uint32_t count() const { return end - begin; }
 };
 
+// Tree slots [begin, end).
+struct ParticleRun {
+  std::uint32_t begin, end;
+};
+
 class GravityTree {
  public:
   // support: the kernel support in units of h. Throws std::invalid_argument if leaf_size < 1

@@ -18,6 +18,7 @@
 #include "sphark/gravity/gravity_tree.hpp"
 #include "sphark/gravity/multipole.hpp"
 #include "sphark/gravity/self_gravity.hpp"
+#include "sphark/kernels/kernels.hpp"
 
 namespace sphark {
 
@@ -37,19 +38,19 @@ class TreeGravity final : public SelfGravity {
   void far_field_expansions();
   void pass_expansions_down();
   void merge_near_runs();
-  void evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential) const;
+  void evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential, std::uint32_t* inside) const;
 
   GravityOptions opt_;
   GravityTree tree_;
   DualTreeWalk walk_;
   std::vector<LocalExpansion> local_;
-  struct ParticleRun {
-    std::uint32_t begin, end;
-  };
   // Leaf i's runs: runs_[near.begin(i) ..): newtonian_runs_[i] Newtonian-only runs, then up to
-  // all_runs_[i] runs that may hold softened pairs.
+  // all_runs_[i] runs that may hold softened pairs (masked_length_: the most particles in the
+  // latter over all leaves, the size of each thread's inside_ list).
   std::vector<ParticleRun> runs_;
   std::vector<std::uint32_t> newtonian_runs_, all_runs_;
+  std::uint32_t masked_length_ = 0;
+  std::vector<std::vector<std::uint32_t>> inside_;
   long allocations_ = 0;
 };
 
