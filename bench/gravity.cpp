@@ -40,9 +40,10 @@ void set_counters(benchmark::State& state, std::size_t n) {
   state.counters["threads"] = omp_get_max_threads();
 }
 
-// args: n, threads, profile (0 uniform, 1 1/r), leaf size
+// args: n, threads, profile (0 uniform, 1 1/r), leaf size[, 0: SSE2 loops instead of AVX2]
 void BM_TreeGravity(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
+  use_gravity_avx2(state.range(4) != 0);
   const SphereParticles& p = sphere(static_cast<SphereProfile>(state.range(2)), static_cast<std::size_t>(state.range(0)));
   GravityOptions opt;
   opt.leaf_size = static_cast<int>(state.range(3));
@@ -63,6 +64,8 @@ void BM_TreeGravity(benchmark::State& state) {
   state.counters["far_per_particle"] = 2.0 * tree.walk().far_pairs() / static_cast<double>(p.size());
   state.counters["near_per_particle"] = static_cast<double>(near_pairs) / static_cast<double>(p.size());
   state.counters["allocations"] = static_cast<double>(tree.allocations());
+  state.counters["avx2"] = gravity_simd() == "avx2";
+  use_gravity_avx2(true);
 }
 
 void BM_DirectGravity(benchmark::State& state) {
@@ -78,11 +81,11 @@ void BM_DirectGravity(benchmark::State& state) {
 }
 
 void tree_args(benchmark::internal::Benchmark* b, int threads) {
-  b->ArgNames({"n", "threads", "profile", "leaf"});
+  b->ArgNames({"n", "threads", "profile", "leaf", "simd"});
   const GravityOptions o;
   for (int profile : {0, 1})
     for (long n : {1000L, 3000L, 10000L, 30000L, 100000L, 300000L, 1000000L})
-      b->Args({n, threads, profile, o.leaf_size});
+      b->Args({n, threads, profile, o.leaf_size, 1});
 }
 void direct_args(benchmark::internal::Benchmark* b, int threads) {
   b->ArgNames({"n", "threads", "profile"});
@@ -96,7 +99,9 @@ BENCHMARK(BM_TreeGravity)->Apply([](auto* b) { tree_args(b, 1); })->Unit(benchma
 BENCHMARK(BM_TreeGravity)->Apply([](auto* b) { tree_args(b, 2); })->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DirectGravity)->Apply([](auto* b) { direct_args(b, 1); })->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DirectGravity)->Apply([](auto* b) { direct_args(b, 2); })->UseRealTime()->Unit(benchmark::kMillisecond);
-// leaf-size scan at N = 1e5 (uniform), one thread
-BENCHMARK(BM_TreeGravity)->ArgNames({"n", "threads", "profile", "leaf"})
-    ->ArgsProduct({{100000}, {1}, {0}, {2, 4, 6, 12, 16}})->Unit(benchmark::kMillisecond);
+// leaf-size scan at N = 1e5 and 1e6 (uniform), one thread; SSE2 against AVX2 loops
+BENCHMARK(BM_TreeGravity)->ArgNames({"n", "threads", "profile", "leaf", "simd"})
+    ->ArgsProduct({{100000, 1000000}, {1}, {0}, {4, 6, 12}, {1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TreeGravity)->ArgNames({"n", "threads", "profile", "leaf", "simd"})
+    ->ArgsProduct({{100000, 1000000}, {1}, {0}, {8}, {0}})->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
 #include "reuse_buffer.hpp"
@@ -13,9 +12,15 @@ namespace sphark {
 
 using gravity_detail::resize_reporting_growth;
 
+std::uint32_t left_count(std::uint32_t n, std::uint32_t leaf_size) {
+  const std::uint32_t leaves = (n + leaf_size - 1) / leaf_size;
+  return (leaves + 1) / 2 * leaf_size;
+}
+
 std::uint32_t tree_node_count(std::uint32_t n, std::uint32_t leaf_size) {
   if (n <= leaf_size) return 1;
-  return 1 + tree_node_count(n / 2, leaf_size) + tree_node_count(n - n / 2, leaf_size);
+  const std::uint32_t left = left_count(n, leaf_size);
+  return 1 + tree_node_count(left, leaf_size) + tree_node_count(n - left, leaf_size);
 }
 
 void GravityTree::build(const GravitySources& src, Real support, int leaf_size) {
@@ -23,7 +28,11 @@ void GravityTree::build(const GravitySources& src, Real support, int leaf_size) 
   if (src.n >= std::numeric_limits<std::uint32_t>::max()) throw std::invalid_argument("GravityTree: too many particles");
   const auto n = static_cast<std::uint32_t>(src.n);
   bool grew = resize_reporting_growth(order_, n);
-  std::iota(order_.begin(), order_.end(), 0u);
+  grew |= resize_reporting_growth(points_, n);
+  const auto np = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < np; ++k)
+    points_[k] = {{src.x[3 * k], src.x[3 * k + 1], src.x[3 * k + 2]}, static_cast<std::uint32_t>(k)};
   grew |= resize_reporting_growth(nodes_, n == 0 ? 0 : tree_node_count(n, static_cast<std::uint32_t>(leaf_size)));
   for (auto* v : {&px_, &py_, &pz_, &pm_, &ph_, &phinv_}) grew |= resize_reporting_growth(*v, n);
   leaves_.clear();
@@ -35,7 +44,7 @@ void GravityTree::build(const GravitySources& src, Real support, int leaf_size) 
   while (!level_.empty()) {
     const auto count = static_cast<std::ptrdiff_t>(level_.size());
 #pragma omp parallel for schedule(dynamic, 1)
-    for (std::ptrdiff_t k = 0; k < count; ++k) split(level_[k], src.x, leaf_size);
+    for (std::ptrdiff_t k = 0; k < count; ++k) split(level_[k], leaf_size);
     next_level_.clear();
     for (std::uint32_t i : level_) {
       if (nodes_[i].leaf()) continue;
@@ -46,11 +55,10 @@ void GravityTree::build(const GravitySources& src, Real support, int leaf_size) 
   }
   for (std::uint32_t i = 0; i < nodes_.size(); ++i)
     if (nodes_[i].leaf()) leaves_.push_back(i);
-  const auto np = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t k = 0; k < np; ++k) {
-    const std::uint32_t a = order_[k];
-    px_[k] = src.x[3 * a], py_[k] = src.x[3 * a + 1], pz_[k] = src.x[3 * a + 2];
+    const std::uint32_t a = order_[k] = points_[k].index;
+    px_[k] = points_[k].x[0], py_[k] = points_[k].x[1], pz_[k] = points_[k].x[2];
     pm_[k] = src.m[a], ph_[k] = src.h[a], phinv_[k] = 1 / src.h[a];
   }
   const auto nn = static_cast<std::ptrdiff_t>(nodes_.size());
@@ -59,35 +67,35 @@ void GravityTree::build(const GravitySources& src, Real support, int leaf_size) 
   if (grew) ++allocations_;
 }
 
-// Median split along the longest side of the bounding box; the children's slots in pre-order.
-void GravityTree::split(std::uint32_t node, const Real* x, int leaf_size) {
+// Split along the longest side of the bounding box at the left_count-th point (nth_element on
+// the node's points, which carry their coordinates: no indirection); the children's slots in
+// pre-order.
+void GravityTree::split(std::uint32_t node, int leaf_size) {
   TreeNode& nd = nodes_[node];
   const std::uint32_t count = nd.count();
   if (count <= static_cast<std::uint32_t>(leaf_size)) {
     nd.left = nd.right = 0;
     return;
   }
+  const auto first = points_.begin() + nd.begin, last = points_.begin() + nd.end;
   Real lo[3], hi[3];
-  for (int c = 0; c < 3; ++c) lo[c] = hi[c] = x[3 * order_[nd.begin] + c];
-  for (std::uint32_t k = nd.begin; k < nd.end; ++k)
-    for (int c = 0; c < 3; ++c) {
-      const Real v = x[3 * order_[k] + c];
-      lo[c] = std::min(lo[c], v), hi[c] = std::max(hi[c], v);
-    }
+  for (int c = 0; c < 3; ++c) lo[c] = hi[c] = first->x[c];
+  for (auto p = first; p != last; ++p)
+    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p->x[c]), hi[c] = std::max(hi[c], p->x[c]);
   int axis = 0;
   for (int c = 1; c < 3; ++c)
     if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
-  const std::uint32_t half = count / 2, mid = nd.begin + half;
-  std::nth_element(order_.begin() + nd.begin, order_.begin() + mid, order_.begin() + nd.end,
-                   [x, axis](std::uint32_t a, std::uint32_t b) { return x[3 * a + axis] < x[3 * b + axis]; });
+  const std::uint32_t half = left_count(count, static_cast<std::uint32_t>(leaf_size));
+  std::nth_element(first, first + half, last,
+                   [axis](const BuildPoint& a, const BuildPoint& b) { return a.x[axis] < b.x[axis]; });
   nd.left = node + 1;
   nd.right = node + 1 + tree_node_count(half, static_cast<std::uint32_t>(leaf_size));
   TreeNode& l = nodes_[nd.left];
   TreeNode& r = nodes_[nd.right];
   l = TreeNode{};
   r = TreeNode{};
-  l.begin = nd.begin, l.end = mid;
-  r.begin = mid, r.end = nd.end;
+  l.begin = nd.begin, l.end = nd.begin + half;
+  r.begin = nd.begin + half, r.end = nd.end;
 }
 
 void GravityTree::compute_moments(std::uint32_t node, Real support) {

@@ -8,18 +8,31 @@
 #if defined(SPHARK_GRAVITY_HAVE_AVX2)
 #include <immintrin.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 
 namespace sphark::gravity_detail {
 
+namespace {
+std::atomic<int> avx2_state{-1};  // -1 not decided yet, 0 off, 1 on
+bool cpu_supports_avx2_fma() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+}  // namespace
+
 bool cpu_has_avx2_fma() {
-  static const bool yes = [] {
+  int state = avx2_state.load(std::memory_order_relaxed);
+  if (state < 0) {
     const char* force = std::getenv("SPHARK_GRAVITY_SIMD");
-    if (force && std::strcmp(force, "sse2") == 0) return false;
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  }();
-  return yes;
+    state = (force && std::strcmp(force, "sse2") == 0) ? 0 : cpu_supports_avx2_fma();
+    avx2_state.store(state, std::memory_order_relaxed);
+  }
+  return state == 1;
+}
+
+bool use_avx2(bool on) {
+  const bool possible = on && cpu_supports_avx2_fma();
+  avx2_state.store(possible ? 1 : 0, std::memory_order_relaxed);
+  return possible;
 }
 
 namespace {
@@ -102,3 +115,27 @@ __attribute__((target("avx2,fma"))) std::uint32_t add_newtonian_runs_avx2(
 
 }  // namespace sphark::gravity_detail
 #endif
+
+namespace sphark {
+
+std::string_view gravity_simd() {
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+  if (gravity_detail::cpu_has_avx2_fma()) return "avx2";
+#endif
+#if defined(__SSE2__)
+  return "sse2";
+#else
+  return "scalar";
+#endif
+}
+
+bool use_gravity_avx2(bool on) {
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+  return gravity_detail::use_avx2(on);
+#else
+  (void)on;
+  return false;
+#endif
+}
+
+}  // namespace sphark

@@ -6,7 +6,8 @@
 //                       particles; in masked runs the pairs with r < support * max(h_a, h_b)
 //                       are left out and listed (b = self is left out and not listed);
 //                       on CPUs with AVX2 and FMA four lanes (near_field_avx2.cpp);
-//   add_softened_list   the softened pair interaction (kernel_softening.hpp) over such a list.
+//   add_softened_list   the softened pair interaction (kernel_softening.hpp) over such a list
+//                       (four lanes with AVX2: softened_avx2.cpp).
 // The order of the sums is fixed by the runs or the list alone (on a given CPU).
 #include <array>
 #include <cmath>
@@ -68,11 +69,16 @@ inline std::uint32_t list_inside(unsigned lanes, std::uint32_t b, std::uint32_t 
 }
 
 #if defined(SPHARK_GRAVITY_HAVE_AVX2)
-// True if the CPU has AVX2 and FMA and the environment does not say SPHARK_GRAVITY_SIMD=sse2.
+// True if the AVX2 loops are in use: the CPU has AVX2 and FMA, and neither the environment
+// (SPHARK_GRAVITY_SIMD=sse2, read once) nor use_avx2(false) turned them off.
 bool cpu_has_avx2_fma();
+bool use_avx2(bool on);  // returns whether they are on now
 std::uint32_t add_newtonian_runs_avx2(const ParticleArrays& p, const ParticleRun* runs, std::uint32_t n_newtonian,
                                       std::uint32_t n_runs, const Real xa[3], Real reach_a, Real support,
                                       std::uint32_t self, NewtonianSums& s, std::uint32_t* inside);
+template <class K>  // softened_avx2.cpp
+void add_softened_list_avx2(const ParticleArrays& p, const std::uint32_t* inside, std::uint32_t n, const Real xa[3],
+                            Real ha, Real ha_inv, NewtonianSums& s);
 #endif
 
 #if defined(__SSE2__)
@@ -171,6 +177,9 @@ inline PairGravity2 one_side(__m128d r, __m128d inv_r, __m128d h, __m128d h_inv)
 template <class K>
 inline void add_softened_list(const ParticleArrays& p, const std::uint32_t* inside, std::uint32_t n, const Real xa[3],
                               Real ha, Real ha_inv, NewtonianSums& s) {
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+  if (cpu_has_avx2_fma()) return add_softened_list_avx2<K>(p, inside, n, xa, ha, ha_inv, s);
+#endif
   std::uint32_t k = 0;
 #if defined(__SSE2__)
   const __m128d X = _mm_set1_pd(xa[0]), Y = _mm_set1_pd(xa[1]), Z = _mm_set1_pd(xa[2]), half = _mm_set1_pd(0.5);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 
@@ -106,4 +107,27 @@ TEST(GravityTimeStep, IsTheSmallestSqrtHOverA) {
   EXPECT_EQ(mag, (std::vector<Real>{5, 0, 2}));
   EXPECT_DOUBLE_EQ(gravity_time_step(h.data(), acc.data(), 3), std::sqrt(0.1 / 5));
   EXPECT_EQ(gravity_time_step(h.data(), acc.data(), 0), std::numeric_limits<Real>::infinity());
+}
+
+// Both instruction-set paths of the near field (AVX2 where the CPU has it, SSE2 always on
+// x86-64): each conserves momentum and is thread-count independent; they agree to round-off.
+TEST(GravitySimd, EveryPathConservesAndThePathsAgree) {
+  const SphereParticles p = lopsided();
+  std::vector<Field> fields;
+  for (bool avx2 : {false, true}) {
+    if (use_gravity_avx2(avx2) != avx2) continue;  // this CPU has no AVX2: the SSE2 path alone
+    omp_set_num_threads(2);
+    const Field two = solve(GravitySolver::Tree, p.sources());
+    omp_set_num_threads(1);
+    fields.push_back(solve(GravitySolver::Tree, p.sources()));
+    EXPECT_EQ(fields.back().acc, two.acc) << gravity_simd();
+    EXPECT_LT(momentum_error(p.m, fields.back().acc), 1e-15) << gravity_simd();
+  }
+  use_gravity_avx2(true);
+  ASSERT_GE(fields.size(), 1u);
+  if (fields.size() == 2) {
+    const std::vector<Real> e = relative_force_errors(fields[1], fields[0]);
+    EXPECT_LT(*std::max_element(e.begin(), e.end()), 1e-12);
+    EXPECT_NEAR(fields[1].energy, fields[0].energy, 1e-13 * std::abs(fields[0].energy));
+  }
 }

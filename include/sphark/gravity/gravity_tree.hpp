@@ -1,6 +1,8 @@
 #pragma once
-// A kd-tree of particles for gravity: each node is split at the median along the longest side
-// of its particles' bounding box until it holds at most leaf_size particles. Nodes are numbered
+// A kd-tree of particles for gravity: each node is split along the longest side of its
+// particles' bounding box, near the median: the left child gets ceil(k/2) full leaves of the
+// k = ceil(n / leaf_size) the node needs (so leaves hold leaf_size particles, all but one per
+// subtree), until a node holds at most leaf_size particles. Nodes are numbered
 // in pre-order (a parent before its children; left child = node + 1), so a node's index and its
 // children's follow from the particle counts alone: the build is level by level, OpenMP over the
 // nodes of a level, and its result does not depend on the thread count.
@@ -53,16 +55,23 @@ class GravityTree {
   long allocations() const { return allocations_; }
 
  private:
-  void split(std::uint32_t node, const Real* x, int leaf_size);
+  void split(std::uint32_t node, int leaf_size);
   void compute_moments(std::uint32_t node, Real support);
 
+  struct BuildPoint {
+    Real x[3];
+    std::uint32_t index;
+  };
+  std::vector<BuildPoint> points_;  // the particles during the build, partitioned in place
   std::vector<TreeNode> nodes_;
   std::vector<std::uint32_t> order_, leaves_, level_, next_level_;
   std::vector<Real> px_, py_, pz_, pm_, ph_, phinv_;
   long allocations_ = 0;
 };
 
-// Number of nodes of a tree over n particles (median splits, at most leaf_size per leaf).
+// Particles of the left child of a node of n > leaf_size particles.
+std::uint32_t left_count(std::uint32_t n, std::uint32_t leaf_size);
+// Number of nodes of a tree over n particles.
 std::uint32_t tree_node_count(std::uint32_t n, std::uint32_t leaf_size);
 
 }  // namespace sphark

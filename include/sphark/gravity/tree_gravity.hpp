@@ -12,6 +12,7 @@
 // results do not depend on the thread count. The far and near lists are symmetric, and each
 // far interaction's total force on A is minus that on B to round-off (docs/gravity.md), so
 // linear momentum is conserved to round-off.
+#include <string_view>
 #include <vector>
 
 #include "sphark/gravity/dual_tree_walk.hpp"
@@ -21,6 +22,15 @@
 #include "sphark/kernels/kernels.hpp"
 
 namespace sphark {
+
+// The instruction set of the tree's near-field loops: "avx2" (x86-64 CPUs with AVX2 and FMA,
+// unless the environment says SPHARK_GRAVITY_SIMD=sse2), else "sse2" (or "scalar"). The
+// results differ between them in the last bits (other summation order, FMA); on one setting
+// they do not depend on the thread count.
+std::string_view gravity_simd();
+// Switches the AVX2 loops on (if the CPU has them) or off, for tests and comparisons; returns
+// whether they are on. Not while a compute() runs.
+bool use_gravity_avx2(bool on);
 
 template <class K>
 class TreeGravity final : public SelfGravity {
