@@ -14,7 +14,7 @@ Real DirectGravity<K>::compute(const GravitySources& src, Real* acceleration, Re
   const auto n = static_cast<std::ptrdiff_t>(src.n);
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::ptrdiff_t a = 0; a < n; ++a) {
-    Real ax = 0, ay = 0, az = 0, pot = m[a] * KernelSoftening<K>::phi(0, h[a]);
+    Real ax = 0, ay = 0, az = 0, pot = self_potential<K>(m[a], h[a]);
     for (std::ptrdiff_t b = 0; b < n; ++b) {
       if (b == a) continue;
       const Real dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];

@@ -73,7 +73,10 @@ __attribute__((target("avx2,fma"))) inline void newtonian_step_avx2(const Partic
   __m256d counted = Tail ? _mm256_castsi256_pd(lanes) : _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
   if constexpr (Masked) {
     const __m256d reach = _mm256_max_pd(_mm256_set1_pd(reach_a), _mm256_mul_pd(_mm256_set1_pd(support), load(p.h)));
-    const __m256d outside = _mm256_cmp_pd(r2, _mm256_mul_pd(reach, reach), _CMP_GE_OQ);
+    __m256d outside = _mm256_cmp_pd(r2, _mm256_mul_pd(reach, reach), _CMP_GE_OQ);
+    if (self - b < 4)  // never count a particle with itself (h = 0 gives it no reach)
+      outside = _mm256_andnot_pd(
+          _mm256_castsi256_pd(_mm256_cmpeq_epi64(_mm256_set1_epi64x(self - b), _mm256_set_epi64x(3, 2, 1, 0))), outside);
     n_inside = list_inside(_mm256_movemask_pd(_mm256_andnot_pd(outside, counted)), b, self, inside, n_inside);
     counted = _mm256_and_pd(counted, outside);
   }

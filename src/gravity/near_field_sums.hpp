@@ -96,7 +96,9 @@ inline void newtonian_run_sse2(const ParticleArrays& p, ParticleRun run, const R
     __m128d r2 = dx * dx + dy * dy + dz * dz, m = _mm_loadu_pd(p.m + b);
     if constexpr (Masked) {
       const __m128d reach = _mm_max_pd(_mm_set1_pd(reach_a), _mm_set1_pd(support) * _mm_loadu_pd(p.h + b));
-      const __m128d outside = _mm_cmpge_pd(r2, reach * reach);
+      __m128d outside = _mm_cmpge_pd(r2, reach * reach);
+      if (self - b < 2)  // never count a particle with itself (h = 0 gives it no reach)
+        outside = _mm_and_pd(outside, _mm_castsi128_pd(_mm_set_epi64x(self == b + 1 ? 0 : -1, self == b ? 0 : -1)));
       n_inside = list_inside(0x3 & ~_mm_movemask_pd(outside), b, self, inside, n_inside);
       m = _mm_and_pd(outside, m);
       r2 = _mm_or_pd(_mm_and_pd(outside, r2), _mm_andnot_pd(outside, one));
@@ -104,7 +106,7 @@ inline void newtonian_run_sse2(const ParticleArrays& p, ParticleRun run, const R
     const __m128d inv_r = one / _mm_sqrt_pd(r2), m_r = m * inv_r, c = m_r * inv_r * inv_r;
     acc[0] += c * dx, acc[1] += c * dy, acc[2] += c * dz, acc[3] += m_r;
   }
-  if (b < run.end && !add_newtonian_pair(p, b, xa, reach_a, Masked ? support : 0, s) && b != self)
+  if (b < run.end && b != self && !add_newtonian_pair(p, b, xa, reach_a, Masked ? support : 0, s))
     inside[n_inside++] = b;
 }
 #endif
@@ -131,7 +133,7 @@ inline std::uint32_t add_newtonian_runs(const ParticleArrays& p, const ParticleR
 #else
   for (std::uint32_t k = 0; k < n_runs; ++k)
     for (std::uint32_t b = runs[k].begin; b < runs[k].end; ++b)
-      if (!add_newtonian_pair(p, b, xa, reach_a, k < n_newtonian ? 0 : support, s) && b != self) inside[n_inside++] = b;
+      if (b != self && !add_newtonian_pair(p, b, xa, reach_a, k < n_newtonian ? 0 : support, s)) inside[n_inside++] = b;
 #endif
   return n_inside;
 }

@@ -149,7 +149,7 @@ void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real*
     const Real d[3] = {xa[0] - A.com[0], xa[1] - A.com[1], xa[2] - A.com[2]};
     Real value, grad[3];
     value_and_gradient_at(local_[leaf], d, value, grad);
-    FieldSum s{grad[0], grad[1], grad[2], -value + m[a] * KernelSoftening<K>::phi(0, h[a])};
+    FieldSum s{grad[0], grad[1], grad[2], -value + self_potential<K>(m[a], h[a])};
     const ParticleRun* runs = runs_.data() + near.begin(leaf);
     gravity_detail::NewtonianSums newtonian, softened;
     const std::uint32_t n = gravity_detail::add_newtonian_runs(arrays, runs, newtonian_runs_[leaf], all_runs_[leaf], xa,

@@ -60,6 +60,13 @@ struct KernelSoftening {
   }
 };
 
+// A particle's potential on itself per unit G: m phi(0, h) (the b = a term of PM07's sum; the
+// self energy of its smoothed mass), 0 for an unsoftened point mass (h = 0).
+template <class K>
+inline Real self_potential(Real m, Real h) {
+  return h > 0 ? m * KernelSoftening<K>::phi(0, h) : 0;
+}
+
 // The symmetric pair interaction of PM07 (§3): phi_ab = (phi(r, h_a) + phi(r, h_b)) / 2 and the
 // force coefficient ((dphi/dr)(r, h_a) + (dphi/dr)(r, h_b)) / (2 r), bitwise symmetric in (h_a, h_b).
 // Acceleration of a: -G m_b force_over_r (x_a - x_b); potential at a: G m_b phi.

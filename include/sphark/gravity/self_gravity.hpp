@@ -21,7 +21,7 @@ namespace sphark {
 struct GravitySources {
   const Real* x = nullptr;
   const Real* m = nullptr;
-  const Real* h = nullptr;  // softening lengths (the SPH h); h = 0: unsoftened point masses
+  const Real* h = nullptr;  // softening lengths (the SPH h); h = 0: unsoftened, no self term
   std::size_t n = 0;
 };
 
