@@ -3,6 +3,7 @@
 
 #include "sphark/gravity/kernel_softening.hpp"
 #include "sphark/kernels/kernels.hpp"
+#include "gravity_kernels.hpp"
 
 namespace sphark {
 
@@ -39,10 +40,8 @@ Real potential_energy(const Real* m, const Real* potential, std::size_t n) {
   return 0.5 * e;
 }
 
-template class DirectGravity<CubicSpline<3>>;
-template class DirectGravity<QuinticSpline<3>>;
-template class DirectGravity<WendlandC2<3>>;
-template class DirectGravity<WendlandC4<3>>;
-template class DirectGravity<WendlandC6<3>>;
+#define SPHARK_INSTANTIATE(K) template class DirectGravity<K>;
+SPHARK_GRAVITY_KERNELS(SPHARK_INSTANTIATE)
+#undef SPHARK_INSTANTIATE
 
 }  // namespace sphark

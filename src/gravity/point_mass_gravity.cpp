@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "reuse_buffer.hpp"
+#include "gravity_kernels.hpp"
 
 namespace sphark {
 
@@ -73,14 +74,10 @@ Real add_sink_sink_gravity(Real G, const PointMasses& sinks, const SinkSoftening
   return energy;
 }
 
-#define SPHARK_SINK_GRAVITY(K)                                                                              \
-  template class SinkGasGravity<K>;                                                                         \
+#define SPHARK_INSTANTIATE(K) \
+  template class SinkGasGravity<K>; \
   template Real add_sink_sink_gravity<K>(Real, const PointMasses&, const SinkSoftening&, Real*, Real*);
-SPHARK_SINK_GRAVITY(CubicSpline<3>)
-SPHARK_SINK_GRAVITY(QuinticSpline<3>)
-SPHARK_SINK_GRAVITY(WendlandC2<3>)
-SPHARK_SINK_GRAVITY(WendlandC4<3>)
-SPHARK_SINK_GRAVITY(WendlandC6<3>)
-#undef SPHARK_SINK_GRAVITY
+SPHARK_GRAVITY_KERNELS(SPHARK_INSTANTIATE)
+#undef SPHARK_INSTANTIATE
 
 }  // namespace sphark

@@ -9,6 +9,7 @@
 #include "sphark/gravity/direct_gravity.hpp"
 #include "sphark/gravity/tree_gravity.hpp"
 #include "sphark/kernels/kernels.hpp"
+#include "gravity_kernels.hpp"
 
 namespace sphark {
 
@@ -26,11 +27,9 @@ std::unique_ptr<SelfGravity> make_self_gravity(GravitySolver solver, const Gravi
   return std::make_unique<TreeGravity<K>>(options);
 }
 
-template std::unique_ptr<SelfGravity> make_self_gravity<CubicSpline<3>>(GravitySolver, const GravityOptions&);
-template std::unique_ptr<SelfGravity> make_self_gravity<QuinticSpline<3>>(GravitySolver, const GravityOptions&);
-template std::unique_ptr<SelfGravity> make_self_gravity<WendlandC2<3>>(GravitySolver, const GravityOptions&);
-template std::unique_ptr<SelfGravity> make_self_gravity<WendlandC4<3>>(GravitySolver, const GravityOptions&);
-template std::unique_ptr<SelfGravity> make_self_gravity<WendlandC6<3>>(GravitySolver, const GravityOptions&);
+#define SPHARK_INSTANTIATE(K) template std::unique_ptr<SelfGravity> make_self_gravity<K>(GravitySolver, const GravityOptions&);
+SPHARK_GRAVITY_KERNELS(SPHARK_INSTANTIATE)
+#undef SPHARK_INSTANTIATE
 
 void acceleration_magnitudes(const Real* a, std::size_t n, Real* magnitude) {
   for (std::size_t i = 0; i < n; ++i)

@@ -9,6 +9,7 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 #include "sphark/kernels/kernels.hpp"
+#include "gravity_kernels.hpp"
 
 namespace sphark::gravity_detail {
 
@@ -97,15 +98,11 @@ void add_softened_list_avx2(const ParticleArrays& p, const std::uint32_t* inside
   softened_list_avx2<K>(p, inside, n, xa, ha, ha_inv, s);
 }
 
-#define SPHARK_SOFTENED_AVX2(K)                                                                                 \
+#define SPHARK_INSTANTIATE(K)                                                                                   \
   template void add_softened_list_avx2<K>(const ParticleArrays&, const std::uint32_t*, std::uint32_t, const Real*, \
                                           Real, Real, NewtonianSums&);
-SPHARK_SOFTENED_AVX2(CubicSpline<3>)
-SPHARK_SOFTENED_AVX2(QuinticSpline<3>)
-SPHARK_SOFTENED_AVX2(WendlandC2<3>)
-SPHARK_SOFTENED_AVX2(WendlandC4<3>)
-SPHARK_SOFTENED_AVX2(WendlandC6<3>)
-#undef SPHARK_SOFTENED_AVX2
+SPHARK_GRAVITY_KERNELS(SPHARK_INSTANTIATE)
+#undef SPHARK_INSTANTIATE
 
 }  // namespace sphark::gravity_detail
 #endif

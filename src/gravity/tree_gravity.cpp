@@ -12,6 +12,7 @@
 #include "sphark/gravity/direct_gravity.hpp"
 #include "sphark/gravity/kernel_softening.hpp"
 #include "sphark/kernels/kernels.hpp"
+#include "gravity_kernels.hpp"
 
 namespace sphark {
 
@@ -165,10 +166,8 @@ void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real*
   }
 }
 
-template class TreeGravity<CubicSpline<3>>;
-template class TreeGravity<QuinticSpline<3>>;
-template class TreeGravity<WendlandC2<3>>;
-template class TreeGravity<WendlandC4<3>>;
-template class TreeGravity<WendlandC6<3>>;
+#define SPHARK_INSTANTIATE(K) template class TreeGravity<K>;
+SPHARK_GRAVITY_KERNELS(SPHARK_INSTANTIATE)
+#undef SPHARK_INSTANTIATE
 
 }  // namespace sphark

@@ -27,8 +27,7 @@ namespace {
 
 template <class K>
 class GradHGravityTest : public ::testing::Test {};
-using Kernels = ::testing::Types<CubicSpline<3>, QuinticSpline<3>, WendlandC2<3>, WendlandC4<3>, WendlandC6<3>>;
-TYPED_TEST_SUITE(GradHGravityTest, Kernels);
+TYPED_TEST_SUITE(GradHGravityTest, gravity_test::AllKernels);
 
 constexpr Real kEta = 1.2;
 

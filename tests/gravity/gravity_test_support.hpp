@@ -1,5 +1,7 @@
 #pragma once
 // Shared helpers of the gravity tests: run a solver, compare fields, momentum error.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -8,6 +10,9 @@
 #include "sphark/kernels/kernels.hpp"
 
 namespace sphark::gravity_test {
+
+// Every 3D kernel the gravity module supports, for typed tests.
+using AllKernels = ::testing::Types<CubicSpline<3>, QuinticSpline<3>, WendlandC2<3>, WendlandC4<3>, WendlandC6<3>>;
 
 struct Field {
   std::vector<Real> acc, pot;

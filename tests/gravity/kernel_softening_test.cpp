@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "gravity_test_support.hpp"
 #include "sphark/gravity/kernel_softening.hpp"
 
 using namespace sphark;
@@ -15,8 +16,7 @@ namespace {
 
 template <class K>
 class KernelSofteningTest : public ::testing::Test {};
-using Kernels = ::testing::Types<CubicSpline<3>, QuinticSpline<3>, WendlandC2<3>, WendlandC4<3>, WendlandC6<3>>;
-TYPED_TEST_SUITE(KernelSofteningTest, Kernels);
+TYPED_TEST_SUITE(KernelSofteningTest, gravity_test::AllKernels);
 
 constexpr Real kH = 0.7;  // a smoothing length that is not 1, so that every h scaling is exercised
 
