@@ -1,5 +1,5 @@
 // Self-gravity cost per particle: tree (theta = 0.5, quadrupoles, mutual walk) and direct
-// summation, N = 1e3 .. 1e6, on a uniform sphere and a rho ~ 1/r sphere (random placement,
+// summation, N = 1e2 .. 1e6 (direct to 3e4), on a uniform sphere and a rho ~ 1/r sphere (random placement,
 // h = 1.2 (m / rho)^(1/3) from the exact density). Counters: ns per particle per call, and for
 // the tree ns / (particle log2 N) (flat if the cost is N log N), far (cell-cell) interactions
 // and near particle pairs per particle. Single-thread rows report CPU time; 2-thread rows wall
@@ -84,13 +84,13 @@ void tree_args(benchmark::internal::Benchmark* b, int threads) {
   b->ArgNames({"n", "threads", "profile", "leaf", "simd"});
   const GravityOptions o;
   for (int profile : {0, 1})
-    for (long n : {1000L, 3000L, 10000L, 30000L, 100000L, 300000L, 1000000L})
+    for (long n : {100L, 300L, 1000L, 3000L, 10000L, 30000L, 100000L, 300000L, 1000000L})
       b->Args({n, threads, profile, o.leaf_size, 1});
 }
 void direct_args(benchmark::internal::Benchmark* b, int threads) {
   b->ArgNames({"n", "threads", "profile"});
   for (int profile : {0, 1})
-    for (long n : {1000L, 3000L, 10000L, 30000L}) b->Args({n, threads, profile});
+    for (long n : {100L, 300L, 1000L, 3000L, 10000L, 30000L}) b->Args({n, threads, profile});
 }
 
 }  // namespace
