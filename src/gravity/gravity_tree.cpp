@@ -36,6 +36,7 @@ void GravityTree::build(const GravitySources& src, Real support, int leaf_size) 
   grew |= resize_reporting_growth(nodes_, n == 0 ? 0 : tree_node_count(n, static_cast<std::uint32_t>(leaf_size)));
   for (auto* v : {&px_, &py_, &pz_, &pm_, &ph_, &phinv_}) grew |= resize_reporting_growth(*v, n);
   leaves_.clear();
+  level_.clear();
   if (n > 0) {
     nodes_[0] = TreeNode{};
     nodes_[0].end = n;

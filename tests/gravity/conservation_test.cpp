@@ -146,3 +146,18 @@ TEST(GravityConservation, UnsoftenedPointMasses) {
   EXPECT_LT(momentum_error(p.m, tree.acc), 1e-15);
   EXPECT_NEAR(tree.energy, direct.energy, 1e-4 * std::abs(direct.energy));
 }
+
+// No particle, and one: nothing, then only the self potential G m phi(0, h).
+TEST(GravityConservation, EmptyAndSingleParticle) {
+  for (GravitySolver s : {GravitySolver::Direct, GravitySolver::Tree}) {
+    auto g = make_self_gravity<CubicSpline<3>>(s, GravityOptions{});
+    EXPECT_EQ(g->compute(GravitySources{}, nullptr, nullptr), 0.0);
+    const std::vector<Real> x{0.3, 0.1, -0.2}, m{2.0}, h{0.5};
+    std::vector<Real> acc(3, 1.0), pot(1, 1.0);
+    const Real e = g->compute({x.data(), m.data(), h.data(), 1}, acc.data(), pot.data());
+    EXPECT_EQ(acc, (std::vector<Real>{0, 0, 0})) << gravity_solver_name(s);
+    EXPECT_DOUBLE_EQ(pot[0], 2.0 * (-1.4 / 0.5)) << gravity_solver_name(s);  // phi~(0) = -7/5 (cubic)
+    EXPECT_DOUBLE_EQ(e, 0.5 * 2.0 * pot[0]);
+    EXPECT_EQ(g->compute(GravitySources{}, nullptr, nullptr), 0.0);  // and back to none
+  }
+}
