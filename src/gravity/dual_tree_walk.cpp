@@ -1,0 +1,173 @@
+// The mutual walk (see sphark/gravity/dual_tree_walk.hpp).
+#include "sphark/gravity/dual_tree_walk.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace sphark {
+
+namespace {
+using WalkNode = DualTreeWalk::WalkNode;
+// |z_A - z_B|^2, computed identically for (A, B) and (B, A).
+Real centre_distance2(const WalkNode& A, const WalkNode& B) {
+  const Real dx = A.com[0] - B.com[0], dy = A.com[1] - B.com[1], dz = A.com[2] - B.com[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+// No particle of one node can be inside the softening reach of a particle of the other:
+// |z_A - z_B| >= r_A + r_B + max(reach_A, reach_B).
+bool beyond_softening(const WalkNode& A, const WalkNode& B, Real d2) {
+  const Real gap = A.radius + B.radius + std::max(A.reach, B.reach);
+  return d2 >= gap * gap;
+}
+}  // namespace
+
+DualTreeWalk::Step DualTreeWalk::classify(std::uint32_t a, std::uint32_t b) const {
+  const WalkNode &A = nodes_[a], &B = nodes_[b];
+  if (a == b) return A.leaf() ? Step::Near : Step::Self;
+  const Real d2 = centre_distance2(A, B), size = A.radius + B.radius;
+  if (size * size < theta_ * theta_ * d2 && beyond_softening(A, B, d2)) return Step::Far;
+  if (A.leaf() && B.leaf()) return Step::Near;
+  if (B.leaf() || (!A.leaf() && A.radius >= B.radius)) return Step::SplitA;
+  return Step::SplitB;
+}
+
+// Every pair of leaves under a and b (a == b: the pairs within a, each once) into out.near.
+void DualTreeWalk::record_leaf_pairs(std::uint32_t a, std::uint32_t b, Found& out) const {
+  const WalkNode &A = nodes_[a], &B = nodes_[b];
+  if (a == b && !A.leaf()) {
+    record_leaf_pairs(A.left, A.left, out);
+    record_leaf_pairs(A.right, A.right, out);
+    record_leaf_pairs(A.left, A.right, out);
+  } else if (!A.leaf()) {
+    record_leaf_pairs(A.left, b, out);
+    record_leaf_pairs(A.right, b, out);
+  } else if (!B.leaf()) {
+    record_leaf_pairs(a, B.left, out);
+    record_leaf_pairs(a, B.right, out);
+  } else {
+    const bool newtonian = a != b && beyond_softening(A, B, centre_distance2(A, B));
+    out.near.push_back({a, newtonian ? (b | kNewtonian) : b});
+  }
+}
+
+// Terminal steps into out; splits are the caller's (depth or breadth first).
+void DualTreeWalk::record(Step s, NodePair p, Found& out) const {
+  if (s == Step::Far) out.far.push_back(p);
+  if (s == Step::Near) record_leaf_pairs(p.a, p.b, out);
+}
+
+void DualTreeWalk::walk_depth_first(NodePair p, Found& out) const {
+  const Step s = classify(p.a, p.b);
+  const WalkNode &A = nodes_[p.a], &B = nodes_[p.b];
+  switch (s) {
+    case Step::Far:
+    case Step::Near:
+      record(s, p, out);
+      return;
+    case Step::Self:
+      walk_depth_first({A.left, A.left}, out);
+      walk_depth_first({A.right, A.right}, out);
+      walk_depth_first({A.left, A.right}, out);
+      return;
+    case Step::SplitA:
+      walk_depth_first({A.left, p.b}, out);
+      walk_depth_first({A.right, p.b}, out);
+      return;
+    case Step::SplitB:
+      walk_depth_first({p.a, B.left}, out);
+      walk_depth_first({p.a, B.right}, out);
+      return;
+  }
+}
+
+// Expands (root, root) breadth first until kJobs pairs wait (or nothing is left to split);
+// the waiting pairs stay in queue_ from index head on, moved to the front.
+void DualTreeWalk::expand_breadth_first(Found& out) {
+  queue_.assign(1, NodePair{0, 0});
+  std::size_t head = 0;
+  while (head < queue_.size() && queue_.size() - head < static_cast<std::size_t>(kJobs)) {
+    const NodePair p = queue_[head++];
+    const Step s = classify(p.a, p.b);
+    const WalkNode &A = nodes_[p.a], &B = nodes_[p.b];
+    if (s == Step::Far || s == Step::Near) {
+      record(s, p, out);
+    } else if (s == Step::Self) {
+      queue_.push_back({A.left, A.left});
+      queue_.push_back({A.right, A.right});
+      queue_.push_back({A.left, A.right});
+    } else if (s == Step::SplitA) {
+      queue_.push_back({A.left, p.b});
+      queue_.push_back({A.right, p.b});
+    } else {
+      queue_.push_back({p.a, B.left});
+      queue_.push_back({p.a, B.right});
+    }
+  }
+  queue_.erase(queue_.begin(), queue_.begin() + static_cast<std::ptrdiff_t>(head));
+}
+
+std::size_t DualTreeWalk::capacity() const {
+  std::size_t c = queue_.capacity() + found_.capacity() + cursor_.capacity() + nodes_.capacity();
+  for (const Found& f : found_) c += f.far.capacity() + f.near.capacity();
+  for (const PartnerLists* l : {&far_, &near_}) c += l->start.capacity() + l->partner.capacity();
+  return c;
+}
+
+void DualTreeWalk::walk(const GravityTree& tree, Real theta) {
+  if (!(theta > 0 && theta < 1)) throw std::invalid_argument("DualTreeWalk: theta must be in (0, 1)");
+  theta_ = theta;
+  const std::size_t capacity_before = capacity();
+  const std::vector<TreeNode>& tn = tree.nodes();
+  nodes_.resize(tn.size());
+  const auto nn = static_cast<std::ptrdiff_t>(tn.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < nn; ++i) {
+    const TreeNode& t = tn[i];
+    nodes_[i] = {{t.com[0], t.com[1], t.com[2]}, t.radius, t.reach, t.count(), t.left, t.right};
+  }
+  if (found_.size() < 1 + static_cast<std::size_t>(kJobs)) found_.resize(1 + kJobs);
+  for (Found& f : found_) f.far.clear(), f.near.clear();
+  queue_.clear();
+  if (!nodes_.empty()) expand_breadth_first(found_[0]);
+  const auto jobs = static_cast<std::ptrdiff_t>(queue_.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t j = 0; j < jobs; ++j) walk_depth_first(queue_[j], found_[1 + j]);
+  far_pairs_ = assemble(far_, &Found::far, ~0u, false);
+  near_pairs_ = assemble(near_, &Found::near, ~kNewtonian, true);
+  if (capacity() > capacity_before) ++allocations_;
+}
+
+// Per-node partner lists from the unordered pairs (in the order found: prologue, then jobs),
+// then, if sorted, each list sorted by partner (OpenMP over nodes). index_mask strips the flag
+// bits from an entry. Returns the number of unordered pairs.
+std::size_t DualTreeWalk::assemble(PartnerLists& lists, std::vector<NodePair> Found::*which, std::uint32_t index_mask,
+                                   bool sorted) {
+  const std::size_t nn = nodes_.size();
+  lists.start.assign(nn + 1, 0);
+  std::size_t pairs = 0;
+  for (const Found& f : found_)
+    for (const NodePair& p : f.*which) {
+      ++lists.start[p.a + 1];
+      if (p.a != (p.b & index_mask)) ++lists.start[(p.b & index_mask) + 1];
+      ++pairs;
+    }
+  for (std::size_t i = 0; i < nn; ++i) lists.start[i + 1] += lists.start[i];
+  lists.partner.resize(lists.start[nn]);
+  cursor_.assign(lists.start.begin(), lists.start.end() - 1);
+  for (const Found& f : found_)
+    for (const NodePair& p : f.*which) {
+      const std::uint32_t b = p.b & index_mask, flag = p.b & ~index_mask;
+      lists.partner[cursor_[p.a]++] = p.b;
+      if (p.a != b) lists.partner[cursor_[b]++] = p.a | flag;
+    }
+  if (!sorted) return pairs;
+  const auto n = static_cast<std::ptrdiff_t>(nn);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+    std::sort(lists.partner.begin() + lists.start[i], lists.partner.begin() + lists.start[i + 1],
+              [index_mask](std::uint32_t x, std::uint32_t y) { return (x & index_mask) < (y & index_mask); });
+  return pairs;
+}
+
+}  // namespace sphark
