@@ -55,7 +55,11 @@ class ArkodeStepper : public Stepper {
   // After xxxStepResize: method-specific sizes (IMEX: its diagonal and linear solver).
   virtual void after_resize() {}
   // A vector viewing n values at data: serial, or parallel over opts_.communicator (collective).
-  VectorPtr view(std::size_t n, Real* data) const { return make_view(n, data, ctx_.get(), opts_.communicator); }
+  VectorPtr view(std::size_t n, Real* data) const {
+    VectorPtr v = make_view(n, data, ctx_.get(), opts_.communicator);
+    if (opts_.reproducible_norms || opts_.communicator.distributed()) make_norms_reproducible(v.get());
+    return v;
+  }
 
   // Runs a system call inside a C callback: exceptions become -1, non-zero codes are recorded.
   template <class F>

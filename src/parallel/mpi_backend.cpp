@@ -177,6 +177,14 @@ void mpi_abort(const MpiComm& c, int code) noexcept {
   std::abort();
 }
 
+void raw_allreduce(void* comm, double* values, std::size_t n, ReduceOp op) {
+  if (comm) MPI_Allreduce(MPI_IN_PLACE, values, count_of(n, "allreduce"), MPI_DOUBLE, mpi_op(op), *static_cast<MPI_Comm*>(comm));
+}
+void raw_allreduce(void* comm, std::int64_t* values, std::size_t n, ReduceOp op) {
+  if (comm) MPI_Allreduce(MPI_IN_PLACE, values, count_of(n, "allreduce"), MPI_INT64_T, mpi_op(op), *static_cast<MPI_Comm*>(comm));
+}
+std::size_t parallel_local_length(N_Vector v) { return static_cast<std::size_t>(N_VGetLocalLength_Parallel(v)); }
+
 N_Vector mpi_make_vector(const MpiComm& c, std::size_t local, double* data, SUNContext ctx) {
   long long global = static_cast<long long>(local);
   MPI_Allreduce(MPI_IN_PLACE, &global, 1, MPI_LONG_LONG, MPI_SUM, c.comm);
@@ -209,6 +217,13 @@ void mpi_exchange(const MpiComm&, const std::vector<Communicator::Send>&, const 
   unreachable();
 }
 void mpi_abort(const MpiComm&, int) noexcept { std::abort(); }
+void raw_allreduce(void* comm, double*, std::size_t, ReduceOp) {
+  if (comm) unreachable();
+}
+void raw_allreduce(void* comm, std::int64_t*, std::size_t, ReduceOp) {
+  if (comm) unreachable();
+}
+std::size_t parallel_local_length(N_Vector) { unreachable(); }
 N_Vector mpi_make_vector(const MpiComm&, std::size_t, double*, SUNContext) { unreachable(); }
 
 #endif

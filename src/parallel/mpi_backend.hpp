@@ -34,6 +34,13 @@ void mpi_exchange(const MpiComm& c, const std::vector<Communicator::Send>& sends
                   const std::vector<Communicator::Receive>& receives);
 [[noreturn]] void mpi_abort(const MpiComm& c, int code) noexcept;
 
+// Reductions on the MPI_Comm that `comm` points at (N_VGetCommunicator of a parallel vector);
+// no-ops when comm is nullptr.
+void raw_allreduce(void* comm, double* values, std::size_t n, ReduceOp op);
+void raw_allreduce(void* comm, std::int64_t* values, std::size_t n, ReduceOp op);
+// Local length of a SUNDIALS parallel vector.
+std::size_t parallel_local_length(N_Vector v);
+
 // N_VMake_Parallel over `local` entries at `data` (not copied, not freed), global length the
 // sum over the ranks of c (collective).
 N_Vector mpi_make_vector(const MpiComm& c, std::size_t local, double* data, SUNContext ctx);

@@ -45,6 +45,12 @@ struct StepperOptions {
   // (root_reduction) and option checks are reduced over the ranks, so every rank takes the
   // same steps (stepper.hpp). Default: serial, no MPI (the serial code path, unchanged).
   Communicator communicator;
+  // ARKODE's error norm summed exactly (parallel/sundials_vector.hpp: independent of the order
+  // of the entries and of how they are split over ranks), so that the run takes exactly the
+  // steps of the same run on any number of ranks. Distributed runs always use it; false keeps
+  // SUNDIALS' own (sequential) sum for serial runs, whose steps then agree with a distributed
+  // run's until round-off first tips an accept/reject decision.
+  bool reproducible_norms = false;
   // Distributed runs: how each root function g_k is combined over the ranks (each rank's
   // roots() sees only its own particles); missing entries mean ReduceOp::Min ("the first
   // particle to cross").

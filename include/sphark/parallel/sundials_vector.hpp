@@ -17,6 +17,13 @@ namespace sphark {
 // global length is the sum of n over the ranks (collective: every rank calls it).
 N_Vector make_vector_view(const Communicator& comm, std::size_t n, Real* data, SUNContext ctx);
 
+// Replaces the vector's weighted RMS norm (the one ARKODE steers its steps with) by one whose
+// value depends only on the set of entries, not on their order nor on how they are split over
+// ranks (exact fixed-point sum, rounded once: src/parallel/reproducible_norm.cpp). Clones of
+// the vector inherit it. Every distributed stepper uses it; a serial run that sets
+// StepperOptions::reproducible_norms takes exactly the steps of a run on any number of ranks.
+void make_norms_reproducible(N_Vector v);
+
 // SUNContext_Create(&MPI_Comm, ...) or SUNContext_Create(nullptr, ...) when serial; 0 on success.
 int create_sundials_context(const Communicator& comm, SUNContext* ctx);
 
