@@ -40,7 +40,14 @@ ArkodeStepper::ArkodeStepper(OdeSystem& system, const StepperOptions& opts, cons
       y_last_(y0, y0 + system.size()),
       t_last_(t0),
       y_accepted_(y_last_),
-      t_accepted_(t0) {}
+      t_accepted_(t0) {
+  const std::size_t n = system_.size();
+  atol_ = opts_.atol.empty() ? std::vector<Real>{1e-9} : opts_.atol;
+  per_entry_atol_ = atol_.size() == n && n > 1;
+  if (opts_.communicator.distributed())  // one choice for all ranks (SVtolerances is collective)
+    per_entry_atol_ = opts_.communicator.allreduce(std::int64_t(per_entry_atol_), ReduceOp::Max) != 0;
+  if (per_entry_atol_ && n == 0) atol_.clear();  // a rank without entries (distributed runs only)
+}
 
 void ArkodeStepper::check(int flag, const char* call) const {
   if (flag < 0)
@@ -52,12 +59,6 @@ void ArkodeStepper::configure() {
   check(api_.set_user_data(mem_, this), "SetUserData");
   check(api_.set_err_handler(mem_, &error_cb, this), "SetErrHandlerFn");
   check(api_.set_postprocess_step(mem_, &step_done_cb), "SetPostprocessStepFn");
-  const std::size_t n = system_.size();
-  atol_ = opts_.atol.empty() ? std::vector<Real>{1e-9} : opts_.atol;
-  per_entry_atol_ = atol_.size() == n && n > 1;
-  if (opts_.communicator.distributed())  // one choice for all ranks (SVtolerances is collective)
-    per_entry_atol_ = opts_.communicator.allreduce(std::int64_t(per_entry_atol_), ReduceOp::Max) != 0;
-  if (per_entry_atol_ && n == 0) atol_.clear();  // a rank without entries (distributed runs only)
   set_tolerances();
   check(api_.set_max_num_steps(mem_, opts_.max_steps), "SetMaxNumSteps");
   if (opts_.fixed_dt > 0) check(api_.set_fixed_step(mem_, opts_.fixed_dt), "SetFixedStep");
@@ -145,6 +146,7 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     last_code_ = 0;
     callback_error_.clear();
     arkode_message_.clear();
+    evolved_ = true;
     const int flag = api_.evolve(mem_, t_out, yout.get(), &t, ARK_NORMAL);
     if (flag >= 0) {
       std::copy(y, y + n, y_last_.begin());
@@ -186,6 +188,10 @@ void ArkodeStepper::resize(const Resized& state) {
   y_accepted_ = y_last_;
   t_accepted_ = t_last_;
   if (adaptive && per_entry_atol_) atol_.assign(state.atol, state.atol + n);
+  if (!evolved_) {  // ARKODE 6.4.1 allocates its stage vectors at the first evolve: start afresh
+    create(t_last_);
+    return;
+  }
   auto y = view(n, y_last_.data());
   check(api_.resize(mem_, y.get(), 1.0, t_last_, nullptr, nullptr), "Resize");
   if (adaptive) set_tolerances();

@@ -48,7 +48,10 @@ class ArkodeStepper : public Stepper {
  protected:
   ArkodeStepper(OdeSystem& system, const StepperOptions& opts, const ArkodeApi& api, Real t0,
                 const Real* y0);
-  // Called by the derived constructor once mem_ points at the ARKODE memory it owns.
+  // Creates (again) the ARKODE memory at (t0, y_last_) and configures it; mem_ points at it.
+  // Called by the derived constructor, and by resize() before the first advance().
+  virtual void create(Real t0) = 0;
+  // Called by create() once mem_ points at the ARKODE memory it owns.
   void configure();
   // Method-specific counters (RHS evaluations, linear solves, ...).
   virtual void add_method_stats(StepperStats& s) const = 0;
@@ -112,6 +115,7 @@ class ArkodeStepper : public Stepper {
   long recoveries_ = 0;
   Real t_recovered_ = 0;  // t_accepted_ at the last recovery (progress resets the count)
   bool failed_ = false;
+  bool evolved_ = false;  // xxxStepEvolve called at least once (xxxStepResize needs it)
 };
 
 }  // namespace sphark::detail

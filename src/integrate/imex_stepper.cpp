@@ -62,8 +62,15 @@ class ImexStepper final : public ArkodeStepper {
       : ArkodeStepper(system, opts, kArkApi, t0, y0),
         c_(system.size(), 0.0),
         c_explicit_(system.size(), 0.0) {
-    const ImexPair* pair = find_pair(opts.imex_table);
-    if (!pair) throw std::invalid_argument("imex_table=" + opts.imex_table + ": unknown ARK pair");
+    create(t0);
+  }
+
+ private:
+  void create(Real t0) override {
+    c_.assign(system_.size(), 0.0);
+    c_explicit_.assign(system_.size(), 0.0);
+    const ImexPair* pair = find_pair(opts_.imex_table);
+    if (!pair) throw std::invalid_argument("imex_table=" + opts_.imex_table + ": unknown ARK pair");
     auto y0_view = view(y_last_.size(), y_last_.data());  // copied by Create
     mem_owner_.reset(ARKStepCreate(&explicit_cb, &implicit_cb, t0, y0_view.get(), ctx_.get()));
     if (!mem_owner_) throw std::runtime_error("ARKStepCreate failed");
@@ -78,7 +85,6 @@ class ImexStepper final : public ArkodeStepper {
     if (ARKStepSetLinear(mem_, 1) < 0) throw std::runtime_error("ARKStepSetLinear failed");
   }
 
- private:
   void add_method_stats(StepperStats& s) const override {
     ARKStepGetNumRhsEvals(mem_, &s.rhs_evals, &s.rhs_evals_implicit);
     ARKStepGetNumNonlinSolvConvFails(mem_, &s.nonlinear_failures);
