@@ -1,7 +1,7 @@
 // ARKODE's weighted RMS norm, summed so that the result depends only on the set of terms, not
 // on their order nor on how they are split over the ranks (sundials_vector.hpp).
 //
-//   ||x||_w = A sqrt( sum_i q_i^2 / N ),   a_i = |x_i w_i|,  A = max_i a_i,  q_i = a_i / A,
+//   ||x||_w = A sqrt( sum_i q_i^2 / N ),   a_i = |x_i w_i|,  A = max_i a_i,  q_i = a_i (1 / A),
 //
 // with A the global maximum (one Allreduce) and every q_i^2 in [0, 1] added as a fixed-point
 // number of 127 fractional bits (two unsigned 64-bit words, 63 + 64 bits; the bits below are
@@ -32,13 +32,15 @@ std::size_t local_length(N_Vector v) {
 // returned as 32-bit limbs, least significant first (hi's limbs after lo's).
 template <class Term>
 void fixed_point_sum(std::size_t n, Term&& a, double scale, std::int64_t* limbs) {
+  constexpr double k2p63 = 9223372036854775808.0, k2p64 = 18446744073709551616.0;
+  const double inverse = 1.0 / scale;  // the same on every rank: q_i depends on a_i only
   u128 hi = 0, lo = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double q = a(i) / scale;
-    const double f = std::ldexp(q * q, 63);  // exact scaling of the rounded square
-    const double whole = std::floor(f);
-    hi += static_cast<std::uint64_t>(whole);
-    lo += static_cast<std::uint64_t>(std::ldexp(f - whole, 64));  // f - whole is exact, < 1
+    const double q = a(i) * inverse;
+    const double f = (q * q) * k2p63;                // exact scaling of the rounded square, < 2^64
+    const auto whole = static_cast<std::uint64_t>(f);  // floor (f >= 0)
+    hi += whole;
+    lo += static_cast<std::uint64_t>((f - static_cast<double>(whole)) * k2p64);  // exact remainder < 1
   }
   for (int k = 0; k < 4; ++k) {
     limbs[k] = static_cast<std::int64_t>((lo >> (32 * k)) & 0xffffffffu);
