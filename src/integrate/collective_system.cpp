@@ -8,7 +8,7 @@
 namespace sphark::detail {
 
 CollectiveSystem::CollectiveSystem(OdeSystem& inner, Communicator comm, std::vector<ReduceOp> root_reduction)
-    : inner_(inner), comm_(std::move(comm)), root_reduction_(std::move(root_reduction)) {
+    : ForwardingSystem(inner), comm_(std::move(comm)), root_reduction_(std::move(root_reduction)) {
   root_reduction_.resize(static_cast<std::size_t>(std::max(0, inner_.num_roots())), ReduceOp::Min);
 }
 

@@ -7,28 +7,22 @@
 //   max_stable_dt          the minimum over the ranks (NaN if any rank's is NaN);
 //   roots                  each g_k reduced by StepperOptions::root_reduction (default min),
 //                          together with the return code, in one Allreduce.
-// One small Allreduce per call; the rest forwards. Private to src/integrate/.
+// One small Allreduce per call; the rest forwards (ForwardingSystem). Private to src/integrate/.
 #include <string>
 #include <vector>
 
-#include "sphark/integrate/ode_system.hpp"
+#include "sphark/integrate/forwarding_system.hpp"
 #include "sphark/parallel/communicator.hpp"
 
 namespace sphark::detail {
 
-class CollectiveSystem final : public OdeSystem {
+class CollectiveSystem final : public ForwardingSystem {
  public:
   CollectiveSystem(OdeSystem& inner, Communicator comm, std::vector<ReduceOp> root_reduction);
 
-  std::size_t size() const override { return inner_.size(); }
   int rhs(Real t, const Real* y, Real* ydot) override;
-  bool has_stiff_diagonal() const override { return inner_.has_stiff_diagonal(); }
   int stiff_diagonal(Real t, const Real* y, Real* c) override;
-  std::size_t position_offset() const override { return inner_.position_offset(); }
-  std::size_t velocity_offset() const override { return inner_.velocity_offset(); }
-  std::size_t position_size() const override { return inner_.position_size(); }
   Real max_stable_dt(Real t, const Real* y) override;
-  int num_roots() const override { return inner_.num_roots(); }
   int roots(Real t, const Real* y, Real* g) override;
   std::string last_error() const override { return error_; }
 
@@ -37,7 +31,6 @@ class CollectiveSystem final : public OdeSystem {
   int local_call(const char* what, F&& f) noexcept;  // f's code, or -1 after an exception
   int agreed(int code);                              // the collective code, error_ set
 
-  OdeSystem& inner_;
   Communicator comm_;
   std::vector<ReduceOp> root_reduction_;
   std::vector<double> buffer_;  // roots: reduced values, capacity kept

@@ -54,6 +54,62 @@ std::vector<Real> gather_bounds(const Communicator& comm, const std::vector<Real
   return comm.allgather(mine, 2 * D + 1);
 }
 
+template <int D>
+struct Candidate {  // a rank that may need some of my particles, with the image shifts to test
+  int rank;
+  std::vector<Vec<D>> shifts;
+};
+
+// Stride of gather_bounds' rows: lo (D), hi (D), r_max.
+template <int D>
+constexpr std::size_t kRow = 2 * D + 1;
+
+// The (rank, image) pairs where the box of my particles, shifted, comes within reach of theirs.
+template <int D>
+std::vector<Candidate<D>> candidates(const std::vector<Real>& bounds, int self, int ranks, std::size_t n, Real skin,
+                                     const std::vector<Vec<D>>& shifts) {
+  const Real* me = bounds.data() + kRow<D> * self;
+  std::vector<Candidate<D>> out;
+  for (int p = 0; p < ranks && n > 0; ++p) {
+    const Real* b = bounds.data() + kRow<D> * p;
+    if (p == self || b[0] > b[D]) continue;
+    const Real reach = (std::max(me[2 * D], b[2 * D]) + skin) * kMargin;
+    Candidate<D> c{p, {}};
+    for (const Vec<D>& s : shifts) {
+      Real d2 = 0;  // box-box distance
+      for (int k = 0; k < D; ++k) {
+        const Real d = std::max({b[k] - (me[D + k] + s[k]), (me[k] + s[k]) - b[D + k], Real(0)});
+        d2 += d * d;
+      }
+      if (d2 < reach * reach) c.shifts.push_back(s);
+    }
+    if (!c.shifts.empty()) out.push_back(std::move(c));
+  }
+  return out;
+}
+
+// For every candidate, the local particles (ascending) some image of which lies within
+// max(r_i, r_max(p)) + skin of p's box; each at most once.
+template <int D>
+std::vector<std::vector<std::uint32_t>> send_lists(const std::vector<Real>& xw, const Real* r, std::size_t n,
+                                                   const std::vector<Real>& bounds,
+                                                   const std::vector<Candidate<D>>& near, Real skin) {
+  std::vector<std::vector<std::uint32_t>> lists(near.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec<D> xi = Eigen::Map<const Vec<D>>(xw.data() + D * i);
+    for (std::size_t c = 0; c < near.size(); ++c) {
+      const Real* b = bounds.data() + kRow<D> * near[c].rank;
+      const Real reach = (std::max(r[i], b[2 * D]) + skin) * kMargin;
+      for (const Vec<D>& s : near[c].shifts)
+        if (box_distance2<D>(xi + s, b, b + D) < reach * reach) {
+          lists[c].push_back(static_cast<std::uint32_t>(i));
+          break;
+        }
+    }
+  }
+  return lists;
+}
+
 }  // namespace
 
 template <int D>
@@ -73,48 +129,16 @@ void HaloPlan<D>::build(const Real* x, const Real* r, const std::int64_t* ids, s
     if (box_->periodic[k] && box_->hi[k] - box_->lo[k] < 2 * (r_global + skin))  // same verdict on every rank
       throw CollectiveError("HaloPlan: periodic length " + std::to_string(box_->hi[k] - box_->lo[k]) + " along axis " +
                             std::to_string(k) + " is below 2 (r_max + skin) = " + std::to_string(2 * (r_global + skin)));
-  // Candidate (rank, image) pairs: the box of my particles, shifted, within reach of theirs.
-  const std::vector<Vec<D>> shifts = image_shifts(box_);
-  const Real* me = bounds.data() + (2 * D + 1) * self;
-  struct Candidate { int rank; std::vector<Vec<D>> shifts; };
-  std::vector<Candidate> candidates;
-  for (int p = 0; p < ranks && n > 0; ++p) {
-    const Real* b = bounds.data() + (2 * D + 1) * p;
-    if (p == self || b[0] > b[D]) continue;
-    const Real reach = (std::max(me[2 * D], b[2 * D]) + skin) * kMargin;
-    Candidate c{p, {}};
-    for (const Vec<D>& s : shifts) {
-      Real d2 = 0;  // box-box distance
-      for (int k = 0; k < D; ++k) {
-        const Real d = std::max({b[k] - (me[D + k] + s[k]), (me[k] + s[k]) - b[D + k], Real(0)});
-        d2 += d * d;
-      }
-      if (d2 < reach * reach) c.shifts.push_back(s);
-    }
-    if (!c.shifts.empty()) candidates.push_back(std::move(c));
-  }
-  // Send lists: each local particle at most once per rank.
-  std::vector<std::vector<std::uint32_t>> lists(candidates.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec<D> xi = Eigen::Map<const Vec<D>>(xw.data() + D * i);
-    for (std::size_t c = 0; c < candidates.size(); ++c) {
-      const Real* b = bounds.data() + (2 * D + 1) * candidates[c].rank;
-      const Real reach = (std::max(r[i], b[2 * D]) + skin) * kMargin;
-      for (const Vec<D>& s : candidates[c].shifts)
-        if (box_distance2<D>(xi + s, b, b + D) < reach * reach) {
-          lists[c].push_back(static_cast<std::uint32_t>(i));
-          break;
-        }
-    }
-  }
+  const std::vector<Candidate<D>> near = candidates<D>(bounds, self, ranks, n, skin, image_shifts(box_));
+  const std::vector<std::vector<std::uint32_t>> lists = send_lists<D>(xw, r, n, bounds, near, skin);
   std::vector<std::int64_t> counts(ranks, 0);
   send_ranks_.clear();
   send_start_.assign(1, 0);
   send_index_.clear();
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
+  for (std::size_t c = 0; c < near.size(); ++c) {
     if (lists[c].empty()) continue;
-    counts[candidates[c].rank] = static_cast<std::int64_t>(lists[c].size());
-    send_ranks_.push_back(candidates[c].rank);
+    counts[near[c].rank] = static_cast<std::int64_t>(lists[c].size());
+    send_ranks_.push_back(near[c].rank);
     send_index_.insert(send_index_.end(), lists[c].begin(), lists[c].end());
     send_start_.push_back(send_index_.size());
   }
