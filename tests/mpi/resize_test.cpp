@@ -7,6 +7,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
 
 #include "mpi_env.hpp"
 #include "oscillators.hpp"
@@ -111,18 +112,15 @@ TEST(Resize, FixedStepErkKeepsTheSurvivorsBitForBit) {
     }
 }
 
-TEST(Resize, FixedStepImexKeepsTheSurvivors) {
+// The implicit part is linear (ARKStepSetLinear): one Newton iteration per stage, per-entry
+// arithmetic, so the survivors are again exact.
+TEST(Resize, FixedStepImexKeepsTheSurvivorsBitForBit) {
   StepperOptions o;
   o.method = "ark-imex";
   o.fixed_dt = 0.01;
   const Result serial = run(o, Communicator{}, false, false, false, 2, 5, 50, true);
-  for (const Communicator& c : {Communicator{}, world()}) {
-    const Result r = run(o, c, true, true, false, 2, 5, 50, true);
-    const std::vector<Real> expected = gather(serial.y, serial.ids, r.ids);
-    Real worst = 0;
-    for (std::size_t k = 0; k < expected.size(); ++k) worst = std::max(worst, std::abs(expected[k] - r.y[k]));
-    EXPECT_LE(testing::global_max(worst), 1e-14) << "distributed " << c.distributed();
-  }
+  for (const Communicator& c : {Communicator{}, world()})
+    EXPECT_EQ(bits_differing(run(o, c, true, true, false, 2, 5, 50, true), serial), 0) << "distributed " << c.distributed();
 }
 
 // The leapfrog kicks with the derivative at its predictor: with the carried data moved along
@@ -154,7 +152,11 @@ TEST(Resize, AdaptiveErkContinuesLikeAnUninterruptedRun) {
   };
   for (const Communicator& c : {Communicator{}, world()}) {
     const Result r = run(o, c, true, true, false, 3, 10);
-    EXPECT_LE(error(r), 2 * error(whole)) << "distributed " << c.distributed();
+    const Real e = error(r), e_whole = error(whole);
+    if (world().rank() == 0)
+      std::printf("adaptive resize: error %.3g (uninterrupted %.3g), steps after %ld (uninterrupted %ld)\n", e, e_whole,
+                  r.steps_after, whole.steps_after);
+    EXPECT_LE(e, 2 * e_whole) << "distributed " << c.distributed();
     EXPECT_LE(r.steps_after, whole.steps_after + 2);
     EXPECT_GE(r.steps_after, whole.steps_after * 8 / 10);
   }

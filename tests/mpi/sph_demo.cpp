@@ -36,8 +36,8 @@ void SphDemo::gather_halo(const Real* y) {
   std::vector<Real>& r = r_all_;
   r.resize(n);
   for (std::size_t a = 0; a < n; ++a) r[a] = Kernel::support * h_[a];
-  const Real h_min = comm_.allreduce(n ? *std::min_element(h_.begin(), h_.end()) : 1e300, ReduceOp::Min);
   if (!plan_built_ || !plan_.still_valid(x, r.data())) {
+    const Real h_min = comm_.allreduce(n ? *std::min_element(h_.begin(), h_.end()) : 1e300, ReduceOp::Min);
     plan_.build(x, r.data(), ids_.data(), n, p_.skin_h * h_min);
     plan_built_ = true;
     const std::size_t all = n + plan_.halo();

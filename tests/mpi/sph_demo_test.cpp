@@ -50,6 +50,7 @@ struct Outcome {
   std::map<std::int64_t, std::array<Real, 5>> fields;  // x, y, vx, vy, rho by id
   long steps = 0;
   std::size_t migrated = 0, halo = 0;  // particles moved between ranks after the first step; halo size
+  long plan_builds = 0, exchanges = 0, rhs_evals = 0;
 };
 
 // This rank's particles and state (x..., v...) for the ids given.
@@ -111,6 +112,9 @@ Outcome run(const Communicator& c, const std::string& method) {
     if (c.size() > 1 && k < 10) out.migrated += migrate_and_resize(c, sys, y, *stepper, dec, k == 5);
   }
   out.halo = sys.halo().halo();
+  out.plan_builds = sys.halo().stats().builds;  // since the last migration (a new plan each time)
+  out.exchanges = sys.halo().stats().exchanges;
+  out.rhs_evals = stepper->stats().rhs_evals;
   std::vector<Real> ydot(y.size());
   EXPECT_EQ(sys.rhs(t, y.data(), ydot.data()), 0);  // collective; fills the densities
   const std::vector<Real> rho = sys.density();
@@ -146,8 +150,10 @@ void check_demo(const std::string& method) {
     EXPECT_GT(halo, 0);
   }
   if (world().rank() == 0)
-    std::printf("%s on %d ranks: max relative difference to serial %.3g, %lld migrations, halo %lld\n",
-                method.c_str(), world().size(), worst, static_cast<long long>(migrated), static_cast<long long>(halo));
+    std::printf("%s on %d ranks: max relative difference to serial %.3g, %lld particles migrated after the start, "
+                "halo %lld; rank 0: %ld rhs, %ld plan builds and %ld exchanges (builds' id exchange included)\n",
+                method.c_str(), world().size(), worst, static_cast<long long>(migrated), static_cast<long long>(halo),
+                dist.rhs_evals, dist.plan_builds, dist.exchanges);
 }
 
 TEST(SphDemo, ErkMatchesSerialOnEveryRankCount) { check_demo("ARKODE_BOGACKI_SHAMPINE_4_2_3"); }
