@@ -35,7 +35,8 @@
 // Resizing (particles created, accreted or removed; migration to and from other ranks): between
 // advance() calls, the system's size() may change; resize() then hands the stepper the new state
 // at its current time. ARKODE keeps its step size and error history (ERKStepResize /
-// ARKStepResize), the leapfrog its time and step; the next advance() continues from there.
+// ARKStepResize; before the first advance() its memory is created afresh), the leapfrog its
+// time and step; the next advance() continues from there. Distributed: collective.
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,8 +78,8 @@ class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
     // uninterrupted run where the RHS depends on v). Ignored by the ARKODE steppers.
     const Real* carried = nullptr;
   };
-  // Throws std::invalid_argument for a missing per-entry atol; std::logic_error if the stepper
-  // cannot resize.
+  // Throws std::invalid_argument for a missing per-entry atol (on every rank of a distributed
+  // run); std::logic_error if the stepper cannot resize.
   virtual void resize(const Resized& state);
   // Per-entry data aligned with the state that must move with its entries when they are
   // reordered or migrated (the leapfrog's next-kick derivative); empty for ARKODE.
