@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "collective_checks.hpp"
 #include "sphark/core/profile.hpp"
 
 namespace sphark::detail {
@@ -40,11 +41,18 @@ ArkodeStepper::ArkodeStepper(OdeSystem& system, const StepperOptions& opts, cons
     : system_(system),
       opts_(opts),
       api_(api),
-      ctx_(make_context()),
+      ctx_(make_context(opts.communicator)),
       y_last_(y0, y0 + system.size()),
       t_last_(t0),
       y_accepted_(y_last_),
-      t_accepted_(t0) {}
+      t_accepted_(t0) {
+  const std::size_t n = system_.size();
+  atol_ = opts_.atol.empty() ? std::vector<Real>{1e-9} : opts_.atol;
+  per_entry_atol_ = atol_.size() == n && n > 1;
+  if (opts_.communicator.distributed())  // one choice for all ranks (SVtolerances is collective)
+    per_entry_atol_ = opts_.communicator.allreduce(std::int64_t(per_entry_atol_), ReduceOp::Max) != 0;
+  if (per_entry_atol_ && n == 0) atol_.clear();  // a rank without entries (distributed runs only)
+}
 
 void ArkodeStepper::check(int flag, const char* call) const {
   if (flag < 0)
@@ -56,20 +64,25 @@ void ArkodeStepper::configure() {
   check(api_.set_user_data(mem_, this), "SetUserData");
   check(api_.set_err_handler(mem_, &error_cb, this), "SetErrHandlerFn");
   check(api_.set_postprocess_step(mem_, &step_done_cb), "SetPostprocessStepFn");
-  const std::size_t n = system_.size();
-  atol_ = opts_.atol.empty() ? std::vector<Real>{1e-9} : opts_.atol;
-  if (atol_.size() == n && n > 1) {
-    atol_view_ = make_view(n, atol_.data(), ctx_.get());
-    check(api_.sv_tolerances(mem_, opts_.rtol, atol_view_.get()), "SVtolerances");
-  } else {
-    check(api_.ss_tolerances(mem_, opts_.rtol, atol_.front()), "SStolerances");
-  }
+  set_tolerances();
   check(api_.set_max_num_steps(mem_, opts_.max_steps), "SetMaxNumSteps");
   if (opts_.fixed_dt > 0) check(api_.set_fixed_step(mem_, opts_.fixed_dt), "SetFixedStep");
   else if (opts_.initial_dt > 0) check(api_.set_init_step(mem_, opts_.initial_dt), "SetInitStep");
   if (system_.num_roots() > 0) {
     check(api_.root_init(mem_, system_.num_roots(), &roots_cb), "RootInit");
     check(api_.set_no_inactive_root_warn(mem_), "SetNoInactiveRootWarn");
+  }
+}
+
+void ArkodeStepper::set_tolerances() {
+  if (per_entry_atol_) {
+    require_everywhere(opts_.communicator, atol_.size() == system_.size(),
+                       "atol=" + std::to_string(atol_.size()) + " values: the distributed run uses one per state "
+                       "entry, this rank has " + std::to_string(system_.size()));
+    atol_view_ = view(atol_.size(), atol_.data());
+    check(api_.sv_tolerances(mem_, opts_.rtol, atol_view_.get()), "SVtolerances");
+  } else {
+    check(api_.ss_tolerances(mem_, opts_.rtol, atol_.front()), "SStolerances");
   }
 }
 
@@ -114,7 +127,7 @@ bool ArkodeStepper::recover(int& consecutive) {
     below_min_dt_ = true;
     return false;
   }
-  auto y = make_view(y_accepted_.size(), y_accepted_.data(), ctx_.get());
+  auto y = view(y_accepted_.size(), y_accepted_.data());
   if (api_.reset(mem_, t_accepted_, y.get()) < 0) return false;
   if (opts_.fixed_dt > 0) {
     if (api_.set_fixed_step(mem_, h) < 0) return false;
@@ -137,7 +150,7 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     t = t_last_;
     return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
   }
-  auto yout = make_view(n, y, ctx_.get());
+  auto yout = view(n, y);
   try {
     bound_step(t_out);
   } catch (const StableStepFailure& e) {
@@ -151,6 +164,7 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     last_code_ = 0;
     callback_error_.clear();
     arkode_message_.clear();
+    evolved_ = true;
     const int flag = api_.evolve(mem_, t_out, yout.get(), &t, ARK_NORMAL);
     if (flag >= 0) {
       std::copy(y, y + n, y_last_.begin());
@@ -176,6 +190,30 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     t = t_last_;
     return AdvanceStatus::Failed;
   }
+}
+
+// xxxStepResize at the current time with the step size kept (hscale 1): ARKODE keeps its step
+// and error history and re-clones its vectors from the new state. The re-cloned Vabstol holds
+// no values, so adaptive runs set the tolerances again (fixed-step runs keep ARKODE's own
+// error weights, which SStolerances would replace).
+void ArkodeStepper::resize(const Resized& state) {
+  const std::size_t n = system_.size();
+  const bool adaptive = !(opts_.fixed_dt > 0);
+  require_everywhere(opts_.communicator, !(adaptive && per_entry_atol_ && n > 0 && state.atol == nullptr),
+                     "resize: the run uses one atol per state entry; give those of the new state");
+  require_everywhere(opts_.communicator, !(n > 0 && state.y == nullptr), "resize: no state");
+  y_last_.assign(state.y, state.y + n);
+  y_accepted_ = y_last_;
+  t_accepted_ = t_last_;
+  if (adaptive && per_entry_atol_) atol_.assign(state.atol, state.atol + n);
+  if (!evolved_) {  // ARKODE 6.4.1 allocates its stage vectors at the first evolve: start afresh
+    create(t_last_);
+    return;
+  }
+  auto y = view(n, y_last_.data());
+  check(api_.resize(mem_, y.get(), 1.0, t_last_, nullptr, nullptr), "Resize");
+  if (adaptive) set_tolerances();
+  after_resize();
 }
 
 StepperStats ArkodeStepper::stats() const {

@@ -15,6 +15,7 @@ struct ArkodeApi {
   const char* module;
   int (*evolve)(void*, realtype, N_Vector, realtype*, int);
   int (*reset)(void*, realtype, N_Vector);
+  int (*resize)(void*, N_Vector, realtype, realtype, ARKVecResizeFn, void*);
   int (*set_user_data)(void*, void*);
   int (*set_err_handler)(void*, ARKErrHandlerFn, void*);
   int (*set_postprocess_step)(void*, ARKPostProcessFn);
@@ -42,14 +43,26 @@ class ArkodeStepper : public Stepper {
   StepperStats stats() const override;
   std::string failure_reason() const override { return failure_; }
   std::vector<int> roots_found() const override { return roots_; }
+  void resize(const Resized& state) override;
 
  protected:
   ArkodeStepper(OdeSystem& system, const StepperOptions& opts, const ArkodeApi& api, Real t0,
                 const Real* y0);
-  // Called by the derived constructor once mem_ points at the ARKODE memory it owns.
+  // Creates (again) the ARKODE memory at (t0, y_last_) and configures it; mem_ points at it.
+  // Called by the derived constructor, and by resize() before the first advance().
+  virtual void create(Real t0) = 0;
+  // Called by create() once mem_ points at the ARKODE memory it owns.
   void configure();
   // Method-specific counters (RHS evaluations, linear solves, ...).
   virtual void add_method_stats(StepperStats& s) const = 0;
+  // After xxxStepResize: method-specific sizes (IMEX: its diagonal and linear solver).
+  virtual void after_resize() {}
+  // A vector viewing n values at data: serial, or parallel over opts_.communicator (collective).
+  VectorPtr view(std::size_t n, Real* data) const {
+    VectorPtr v = make_view(n, data, ctx_.get(), opts_.communicator);
+    if (opts_.reproducible_norms || opts_.communicator.distributed()) make_norms_reproducible(v.get());
+    return v;
+  }
 
   // Runs a system call inside a C callback: exceptions become -1, non-zero codes are recorded.
   template <class F>
@@ -77,6 +90,7 @@ class ArkodeStepper : public Stepper {
   void record(const char* what, Real t, int code) noexcept;
   void record_exception(const char* what, Real t, const char* message) noexcept;
   void bound_step(Real t_out);
+  void set_tolerances();
   bool recover(int& consecutive);
   void check(int flag, const char* call) const;
   std::string flag_name(int flag) const;
@@ -86,6 +100,7 @@ class ArkodeStepper : public Stepper {
 
   std::vector<Real> atol_;
   VectorPtr atol_view_;
+  bool per_entry_atol_ = false;  // SVtolerances (one atol per entry) rather than SStolerances
   Real t_last_ = 0;              // time of y_last_
   std::vector<Real> y_accepted_;  // state after the last accepted internal step
   Real t_accepted_ = 0;
@@ -100,6 +115,7 @@ class ArkodeStepper : public Stepper {
   long recoveries_ = 0;
   Real t_recovered_ = 0;  // t_accepted_ at the last recovery (progress resets the count)
   bool failed_ = false;
+  bool evolved_ = false;  // xxxStepEvolve called at least once (xxxStepResize needs it)
 };
 
 }  // namespace sphark::detail

@@ -9,6 +9,7 @@ const ArkodeApi kErkApi{
     "ERKStep",
     ERKStepEvolve,
     ERKStepReset,
+    ERKStepResize,
     ERKStepSetUserData,
     ERKStepSetErrHandlerFn,
     ERKStepSetPostprocessStepFn,
@@ -34,16 +35,20 @@ class ErkStepper final : public ArkodeStepper {
  public:
   ErkStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0)
       : ArkodeStepper(system, opts, kErkApi, t0, y0) {
-    auto y0_view = make_view(y_last_.size(), y_last_.data(), ctx_.get());  // copied by Create
+    create(t0);
+  }
+
+ private:
+  void create(Real t0) override {
+    auto y0_view = view(y_last_.size(), y_last_.data());  // copied by Create
     mem_owner_.reset(ERKStepCreate(&rhs_cb, t0, y0_view.get(), ctx_.get()));
     if (!mem_owner_) throw std::runtime_error("ERKStepCreate failed");
     mem_ = mem_owner_.get();
     configure();
-    if (ERKStepSetTableName(mem_, opts.method.c_str()) < 0)
-      throw std::invalid_argument("method=" + opts.method + ": ERKStepSetTableName rejected it");
+    if (ERKStepSetTableName(mem_, opts_.method.c_str()) < 0)
+      throw std::invalid_argument("method=" + opts_.method + ": ERKStepSetTableName rejected it");
   }
 
- private:
   void add_method_stats(StepperStats& s) const override { ERKStepGetNumRhsEvals(mem_, &s.rhs_evals); }
 
   static int rhs_cb(realtype t, N_Vector y, N_Vector ydot, void* self) {

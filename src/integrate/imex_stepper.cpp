@@ -14,6 +14,7 @@ const ArkodeApi kArkApi{
     "ARKStep",
     ARKStepEvolve,
     ARKStepReset,
+    ARKStepResize,
     ARKStepSetUserData,
     ARKStepSetErrHandlerFn,
     ARKStepSetPostprocessStepFn,
@@ -61,9 +62,16 @@ class ImexStepper final : public ArkodeStepper {
       : ArkodeStepper(system, opts, kArkApi, t0, y0),
         c_(system.size(), 0.0),
         c_explicit_(system.size(), 0.0) {
-    const ImexPair* pair = find_pair(opts.imex_table);
-    if (!pair) throw std::invalid_argument("imex_table=" + opts.imex_table + ": unknown ARK pair");
-    auto y0_view = make_view(y_last_.size(), y_last_.data(), ctx_.get());  // copied by Create
+    create(t0);
+  }
+
+ private:
+  void create(Real t0) override {
+    c_.assign(system_.size(), 0.0);
+    c_explicit_.assign(system_.size(), 0.0);
+    const ImexPair* pair = find_pair(opts_.imex_table);
+    if (!pair) throw std::invalid_argument("imex_table=" + opts_.imex_table + ": unknown ARK pair");
+    auto y0_view = view(y_last_.size(), y_last_.data());  // copied by Create
     mem_owner_.reset(ARKStepCreate(&explicit_cb, &implicit_cb, t0, y0_view.get(), ctx_.get()));
     if (!mem_owner_) throw std::runtime_error("ARKStepCreate failed");
     mem_ = mem_owner_.get();
@@ -77,11 +85,20 @@ class ImexStepper final : public ArkodeStepper {
     if (ARKStepSetLinear(mem_, 1) < 0) throw std::runtime_error("ARKStepSetLinear failed");
   }
 
- private:
   void add_method_stats(StepperStats& s) const override {
     ARKStepGetNumRhsEvals(mem_, &s.rhs_evals, &s.rhs_evals_implicit);
     ARKStepGetNumNonlinSolvConvFails(mem_, &s.nonlinear_failures);
     s.linear_solves = linear_solves_;
+  }
+
+  // ARKStepResize recreates the Newton solver but not the linear solver interface (its work
+  // vectors keep the old length): attach the diagonal solver again.
+  void after_resize() override {
+    c_.assign(system_.size(), 0.0);
+    c_explicit_.assign(system_.size(), 0.0);
+    if (ARKStepSetLinearSolver(mem_, solver_.get(), nullptr) < 0)
+      throw std::runtime_error("ARKStepSetLinearSolver failed after resize");
+    if (ARKStepSetLinear(mem_, 1) < 0) throw std::runtime_error("ARKStepSetLinear failed after resize");
   }
 
   // f_E = f + c∘y

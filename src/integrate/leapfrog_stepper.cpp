@@ -33,6 +33,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "collective_checks.hpp"
 #include "sphark/core/profile.hpp"
 #include "steppers.hpp"
 
@@ -58,12 +59,7 @@ class LeapfrogStepper final : public Stepper {
       : system_(system), opts_(opts), n_(system.size()), reversible_(reversible), t_(t0), y_(y0, y0 + n_),
         dy_(n_), y_new_(n_), dy_new_(n_), pred_(n_),
         g_(system.num_roots()), g_new_(system.num_roots()) {
-    const std::size_t p0 = system.position_offset(), np = system.position_size();
-    const std::size_t v0 = system.velocity_offset();
-    for (std::size_t k = 0; k < n_; ++k) {
-      is_position_.push_back(k >= p0 && k < p0 + np);
-      is_velocity_.push_back(k >= v0 && k < v0 + np);
-    }
+    mark_blocks();
   }
 
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
@@ -106,10 +102,41 @@ class LeapfrogStepper final : public Stepper {
   }
   std::vector<int> roots_found() const override { return roots_; }
 
+  // The new state at t_; the next kick uses `carried` (the derivative moved with its entries)
+  // or, without it, the RHS at the new state. Time, step and Kahan compensation are kept.
+  void resize(const Resized& state) override {
+    require_everywhere(opts_.communicator, !(system_.size() > 0 && state.y == nullptr), "resize: no state");
+    n_ = system_.size();
+    y_.assign(state.y, state.y + n_);
+    for (auto* v : {&dy_, &y_new_, &dy_new_, &pred_}) v->assign(n_, 0.0);
+    mark_blocks();
+    if (!started_) {
+      resume_pending_ = false;  // resume_data belonged to the old state: start() evaluates the RHS at y
+      return;
+    }
+    if (failed_) return;
+    if (state.carried) std::copy(state.carried, state.carried + n_, dy_.begin());
+    else if (call("rhs", t_, [&] { return system_.rhs(t_, y_.data(), dy_.data()); }) != 0) return fail("RHS after resize");
+    if (!g_.empty() && call("roots", t_, [&] { return system_.roots(t_, y_.data(), g_.data()); }) != 0)
+      fail("root functions after resize");
+  }
+  std::vector<Real> carried_data() const override { return started_ && !failed_ ? dy_ : std::vector<Real>{}; }
+
  private:
+  void mark_blocks() {
+    const std::size_t p0 = system_.position_offset(), np = system_.position_size();
+    const std::size_t v0 = system_.velocity_offset();
+    is_position_.assign(n_, false);
+    is_velocity_.assign(n_, false);
+    for (std::size_t k = 0; k < n_; ++k) {
+      is_position_[k] = k >= p0 && k < p0 + np;
+      is_velocity_[k] = k >= v0 && k < v0 + np;
+    }
+  }
+
   void start() {
     started_ = true;
-    if (!opts_.resume_data.empty()) {  // a restart: the derivative the interrupted run would use
+    if (resume_pending_ && !opts_.resume_data.empty()) {  // a restart: the derivative the interrupted run would use
       if (opts_.resume_data.size() != n_ + 1)
         return fail("resume_data has " + std::to_string(opts_.resume_data.size()) + " values, expected " +
                     std::to_string(n_ + 1));
@@ -305,7 +332,7 @@ class LeapfrogStepper final : public Stepper {
 
   OdeSystem& system_;
   const StepperOptions opts_;
-  const std::size_t n_;
+  std::size_t n_;
   const bool reversible_;
   Real t_;
   Real t_lost_ = 0;  // Kahan compensation of t_
@@ -315,6 +342,7 @@ class LeapfrogStepper final : public Stepper {
   StepperStats stats_;
   std::string failure_, callback_error_;
   bool started_ = false, failed_ = false;
+  bool resume_pending_ = true;  // opts_.resume_data still applies (no resize before the start)
 };
 
 }  // namespace

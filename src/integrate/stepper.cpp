@@ -9,22 +9,24 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "collective_checks.hpp"
 #include "sphark/integrate/guarded_system.hpp"
 #include "steppers.hpp"
 
 namespace sphark {
 namespace {
 
-// x as printed by an ostream (shortest usual form, e.g. "1e-06"), for option error messages.
 std::string number_text(Real x) {
   std::ostringstream s;
   s << x;
   return s.str();
 }
 
-// Throws std::invalid_argument "option=value: why".
-[[noreturn]] void reject_option(const std::string& option, const std::string& value, const std::string& why) {
-  throw std::invalid_argument(option + "=" + value + ": " + why);
+// option=value: why, thrown as std::invalid_argument if !ok (on every rank at once when the
+// run is distributed: the checks run in the same order everywhere).
+void require(const StepperOptions& o, bool ok, const std::string& option, const std::string& value,
+             const std::string& why) {
+  detail::require_everywhere(o.communicator, ok, option + "=" + value + ": " + why);
 }
 
 bool is_erk(const std::string& method) {
@@ -34,66 +36,35 @@ bool is_erk(const std::string& method) {
 
 void validate_common(const OdeSystem& system, const StepperOptions& o) {
   const std::size_t n = system.size();
-  if (!(o.rtol > 0)) reject_option("rtol", number_text(o.rtol), "must be > 0");
-  if (!o.atol.empty() && o.atol.size() != 1 && o.atol.size() != n)
-    reject_option("atol", std::to_string(o.atol.size()) + " values",
-        "give one value or one per state entry (" + std::to_string(n) + ")");
+  require(o, o.rtol > 0, "rtol", number_text(o.rtol), "must be > 0");
+  require(o, o.atol.empty() || o.atol.size() == 1 || o.atol.size() == n || (o.communicator.distributed() && n == 0),
+          "atol", std::to_string(o.atol.size()) + " values",
+          "give one value or one per state entry (" + std::to_string(n) + ")");
+  Real worst_atol = 0;
   for (Real a : o.atol)
-    if (!(a >= 0)) reject_option("atol", number_text(a), "must be >= 0");
-  if (!(o.fixed_dt >= 0)) reject_option("fixed_dt", number_text(o.fixed_dt), "must be >= 0");
-  if (!(o.max_dt >= 0)) reject_option("max_dt", number_text(o.max_dt), "must be >= 0");
-  if (!(o.min_dt >= 0)) reject_option("min_dt", number_text(o.min_dt), "must be >= 0");
-  if (!(o.initial_dt >= 0)) reject_option("initial_dt", number_text(o.initial_dt), "must be >= 0");
-  if (!(o.cfl_safety > 0)) reject_option("cfl_safety", number_text(o.cfl_safety), "must be > 0");
-  if (o.max_steps <= 0) reject_option("max_steps", std::to_string(o.max_steps), "must be > 0");
+    if (!(a >= 0)) {
+      worst_atol = a;
+      break;
+    }
+  require(o, !(worst_atol < 0) && !std::isnan(worst_atol), "atol", number_text(worst_atol), "must be >= 0");
+  require(o, o.fixed_dt >= 0, "fixed_dt", number_text(o.fixed_dt), "must be >= 0");
+  require(o, o.max_dt >= 0, "max_dt", number_text(o.max_dt), "must be >= 0");
+  require(o, o.min_dt >= 0, "min_dt", number_text(o.min_dt), "must be >= 0");
+  require(o, o.initial_dt >= 0, "initial_dt", number_text(o.initial_dt), "must be >= 0");
+  require(o, o.cfl_safety > 0, "cfl_safety", number_text(o.cfl_safety), "must be > 0");
+  require(o, o.max_steps > 0, "max_steps", std::to_string(o.max_steps), "must be > 0");
 }
 
 void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, const Real* y0) {
   const std::size_t n = system.size(), np = system.position_size();
   const std::size_t xp = system.position_offset(), vp = system.velocity_offset();
-  if (np == 0) reject_option("method", o.method, "the system declares no position block (position_size() == 0)");
-  if (xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np))
-    reject_option("method", o.method, "position/velocity blocks overlap or exceed the state size");
+  const bool empty_rank = o.communicator.distributed() && n == 0;  // its blocks are empty
+  require(o, np > 0 || empty_rank, "method", o.method,
+          "the system declares no position block (position_size() == 0)");
+  require(o, !(xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np)) || empty_rank, "method", o.method,
+          "position/velocity blocks overlap or exceed the state size");
   const bool bounded = o.fixed_dt > 0 || o.max_dt > 0 || std::isfinite(system.max_stable_dt(t0, y0, nullptr));
-  if (!bounded) reject_option("method", o.method, "needs fixed_dt, max_dt or a finite system max_stable_dt");
-}
-
-// A stepper together with the guard it integrates through (one guard per run, see
-// integrate/guarded_system.hpp): owns both, forwards everything to the inner stepper.
-class GuardedStepper final : public Stepper {
- public:
-  GuardedStepper(std::unique_ptr<GuardedSystem> guard, std::unique_ptr<Stepper> inner)
-      : guard_(std::move(guard)), inner_(std::move(inner)) {}
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return inner_->advance(t_out, y, t); }
-  StepperStats stats() const override { return inner_->stats(); }
-  std::string failure_reason() const override { return inner_->failure_reason(); }
-  std::vector<Real> resume_data() const override { return inner_->resume_data(); }
-  std::vector<int> roots_found() const override { return inner_->roots_found(); }
-
- private:
-  std::unique_ptr<GuardedSystem> guard_;  // outlives inner_ (declared first, destroyed last)
-  std::unique_ptr<Stepper> inner_;
-};
-
-std::unique_ptr<Stepper> make_unguarded_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
-                                                const Real* y0) {
-  if (opts.method == "leapfrog" || opts.method == "leapfrog-rev") {
-    validate_leapfrog(system, opts, t0, y0);
-    return detail::make_leapfrog_stepper(system, opts, t0, y0);
-  }
-  if (opts.method == "ark-imex") {
-    if (!system.has_stiff_diagonal())
-      reject_option("method", opts.method, "the system has no stiff diagonal part (use an ERK table)");
-    if (!detail::is_imex_pair(opts.imex_table))
-      reject_option("imex_table", opts.imex_table,
-          "unknown ARK pair (ARK324L2SA, ARK436L2SA, ARK437L2SA, ARK548L2SA, ARK548L2SAb)");
-    return detail::make_imex_stepper(system, opts, t0, y0);
-  }
-  if (!is_erk(opts.method))
-    reject_option("method", opts.method, "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
-  if (opts.fixed_dt <= 0 && !erk_table_has_embedding(opts.method))
-    reject_option("method", opts.method, "table has no embedding: adaptive steps impossible, set fixed_dt");
-  return detail::make_erk_stepper(system, opts, t0, y0);
+  require(o, bounded, "method", o.method, "needs fixed_dt, max_dt or a finite system max_stable_dt");
 }
 
 }  // namespace
@@ -122,13 +93,64 @@ bool erk_table_has_embedding(const std::string& name) {
   return embedded;
 }
 
+namespace detail {
+
+std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                                const Real* y0) {
+  validate_common(system, opts);
+  if (opts.method == "leapfrog" || opts.method == "leapfrog-rev") {
+    validate_leapfrog(system, opts, t0, y0);
+    return make_leapfrog_stepper(system, opts, t0, y0);
+  }
+  if (opts.method == "ark-imex") {
+    require(opts, system.has_stiff_diagonal(), "method", opts.method,
+            "the system has no stiff diagonal part (use an ERK table)");
+    require(opts, is_imex_pair(opts.imex_table), "imex_table", opts.imex_table,
+            "unknown ARK pair (ARK324L2SA, ARK436L2SA, ARK437L2SA, ARK548L2SA, ARK548L2SAb)");
+    return make_imex_stepper(system, opts, t0, y0);
+  }
+  require(opts, is_erk(opts.method), "method", opts.method,
+          "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
+  require(opts, opts.fixed_dt > 0 || erk_table_has_embedding(opts.method), "method", opts.method,
+          "table has no embedding: adaptive steps impossible, set fixed_dt");
+  return make_erk_stepper(system, opts, t0, y0);
+}
+
+}  // namespace detail
+
+namespace {
+// A stepper together with the guard it integrates through (one guard per run, see
+// integrate/guarded_system.hpp): owns both, forwards everything to the inner stepper.
+class GuardedStepper final : public Stepper {
+ public:
+  GuardedStepper(std::unique_ptr<GuardedSystem> guard, std::unique_ptr<Stepper> inner)
+      : guard_(std::move(guard)), inner_(std::move(inner)) {}
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return inner_->advance(t_out, y, t); }
+  StepperStats stats() const override { return inner_->stats(); }
+  std::string failure_reason() const override { return inner_->failure_reason(); }
+  std::vector<Real> resume_data() const override { return inner_->resume_data(); }
+  std::vector<int> roots_found() const override { return inner_->roots_found(); }
+  void resize(const Resized& state) override { inner_->resize(state); }
+  std::vector<Real> carried_data() const override { return inner_->carried_data(); }
+
+ private:
+  std::unique_ptr<GuardedSystem> guard_;  // outlives inner_ (declared first, destroyed last)
+  std::unique_ptr<Stepper> inner_;
+};
+}  // namespace
+
+// The guard checks each rank's own state; a distributed run agrees on its answers around it.
 std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                       const Real* y0) {
-  validate_common(system, opts);
   auto guard = std::make_unique<GuardedSystem>(system);
   guard->inject_nan_from(opts.inject_nan_from);
-  auto inner = make_unguarded_stepper(*guard, opts, t0, y0);
+  auto inner = opts.communicator.distributed() ? detail::make_distributed_stepper(*guard, opts, t0, y0)
+                                               : detail::make_validated_stepper(*guard, opts, t0, y0);
   return std::make_unique<GuardedStepper>(std::move(guard), std::move(inner));
+}
+
+void Stepper::resize(const Resized&) {
+  throw std::logic_error("this stepper cannot change the size of its state");
 }
 
 std::string describe(const StepperOptions& o) {

@@ -17,4 +17,11 @@ bool is_imex_pair(const std::string& name);
 std::unique_ptr<Stepper> make_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts,
                                                Real t0, const Real* y0);
 
+// make_stepper after the option checks (collective in a distributed run), on `system` as given.
+std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                                const Real* y0);
+// A distributed run: the stepper over a CollectiveSystem around `system` (collective_system.hpp).
+std::unique_ptr<Stepper> make_distributed_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                                  const Real* y0);
+
 }  // namespace sphark::detail

@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "sphark/core/types.hpp"
+#include "sphark/parallel/sundials_vector.hpp"
 
 namespace sphark::detail {
 
@@ -36,17 +37,19 @@ using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, 
 using ErkMemPtr = std::unique_ptr<void, ErkMemDeleter>;
 using ArkMemPtr = std::unique_ptr<void, ArkMemDeleter>;
 
-inline ContextPtr make_context() {
+// The context of a stepper: with the MPI communicator of a distributed run, else none.
+inline ContextPtr make_context(const Communicator& comm = {}) {
   SUNContext ctx = nullptr;
-  if (SUNContext_Create(nullptr, &ctx) != 0 || ctx == nullptr)
+  if (create_sundials_context(comm, &ctx) != 0 || ctx == nullptr)
     throw std::runtime_error("SUNContext_Create failed");
   return ContextPtr(ctx);
 }
 
-// A serial N_Vector viewing memory we own (N_VMake_Serial: no copy, not freed by SUNDIALS).
-inline VectorPtr make_view(std::size_t n, Real* data, SUNContext ctx) {
-  N_Vector v = N_VMake_Serial(static_cast<sunindextype>(n), data, ctx);
-  if (v == nullptr) throw std::runtime_error("N_VMake_Serial failed");
+// An N_Vector viewing memory we own (no copy, not freed by SUNDIALS): N_VMake_Serial, or
+// N_VMake_Parallel over an MPI communicator (collective).
+inline VectorPtr make_view(std::size_t n, Real* data, SUNContext ctx, const Communicator& comm = {}) {
+  N_Vector v = make_vector_view(comm, n, data, ctx);
+  if (v == nullptr) throw std::runtime_error(comm.distributed() ? "N_VMake_Parallel failed" : "N_VMake_Serial failed");
   return VectorPtr(v);
 }
 

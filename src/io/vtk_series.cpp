@@ -8,6 +8,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkTypeInt64Array.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cstdio>
@@ -28,6 +29,8 @@ void check_frame(const ParticleFrame& f) {
     throw std::invalid_argument("ParticleFrame: dim " + std::to_string(f.dim) + " not in 1..3");
   }
   if (f.count > 0 && !f.positions) throw std::invalid_argument("ParticleFrame: null positions");
+  for (const auto& a : f.arrays)
+    if (f.ids && a.name == "id") throw std::invalid_argument("ParticleFrame: array named 'id' besides the ids");
   for (const auto& a : f.arrays) {
     if (a.name.empty()) throw std::invalid_argument("ParticleFrame: array without a name");
     if (a.components < 1 || a.components > 3) {
@@ -98,6 +101,13 @@ void write_vtp(const std::filesystem::path& path, const ParticleFrame& frame, Re
   for (const auto& a : frame.arrays) {
     const int out_c = a.components == 1 ? 1 : 3;
     poly->GetPointData()->AddArray(make_array(a.name, a.data, a.components, frame.count, out_c));
+  }
+  if (frame.ids) {  // global particle ids (distributed runs: parallel/, io/pvtp_series.hpp)
+    vtkNew<vtkTypeInt64Array> ids;
+    ids->SetName("id");
+    ids->SetNumberOfTuples(n);
+    for (vtkIdType i = 0; i < n; ++i) ids->SetValue(i, frame.ids[i]);
+    poly->GetPointData()->AddArray(ids);
   }
   vtkNew<vtkDoubleArray> time;
   time->SetName("TimeValue");

@@ -7,6 +7,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkXMLPPolyDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <stdexcept>
@@ -20,20 +21,9 @@ const VtpArray* VtpContents::find(const std::string& name) const {
   return nullptr;
 }
 
-VtpContents read_vtp(const std::filesystem::path& path) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw std::runtime_error("read_vtp: no file '" + path.string() + "'");
-  }
-  vtkNew<vtkXMLPolyDataReader> reader;
-  if (!reader->CanReadFile(path.c_str())) {
-    throw std::runtime_error("read_vtp: '" + path.string() + "' is not a readable .vtp");
-  }
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  if (reader->GetErrorCode() != 0) {
-    throw std::runtime_error("read_vtp: error reading '" + path.string() + "'");
-  }
-  vtkPolyData* poly = reader->GetOutput();
+namespace {
+
+VtpContents contents(vtkPolyData* poly) {
   VtpContents out;
   out.count = static_cast<std::size_t>(poly->GetNumberOfPoints());
   out.vertex_cells = static_cast<std::size_t>(poly->GetNumberOfVerts());
@@ -61,6 +51,34 @@ VtpContents read_vtp(const std::filesystem::path& path) {
     out.time = t->GetComponent(0, 0);
   }
   return out;
+}
+
+// Reads `path` with a VTK XML reader (serial or parallel poly data); `what` names the function.
+template <class Reader>
+VtpContents read_with(const std::filesystem::path& path, const std::string& what, const char* kind) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw std::runtime_error(what + ": no file '" + path.string() + "'");
+  }
+  vtkNew<Reader> reader;
+  if (!reader->CanReadFile(path.c_str())) {
+    throw std::runtime_error(what + ": '" + path.string() + "' is not a readable " + kind);
+  }
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  if (reader->GetErrorCode() != 0) {
+    throw std::runtime_error(what + ": error reading '" + path.string() + "'");
+  }
+  return contents(reader->GetOutput());
+}
+
+}  // namespace
+
+VtpContents read_vtp(const std::filesystem::path& path) {
+  return read_with<vtkXMLPolyDataReader>(path, "read_vtp", ".vtp");
+}
+
+VtpContents read_pvtp(const std::filesystem::path& path) {
+  return read_with<vtkXMLPPolyDataReader>(path, "read_pvtp", ".pvtp");
 }
 
 }  // namespace sphark

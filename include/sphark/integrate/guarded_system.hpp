@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "sphark/integrate/ode_system.hpp"
+#include "sphark/integrate/forwarding_system.hpp"
 #include "sphark/state/state_layout.hpp"
 
 namespace sphark {
@@ -27,26 +27,17 @@ std::string describe_entries(const StateLayout& layout, const std::vector<std::s
 // iteration itself, as a recoverable failure.)
 std::vector<std::size_t> nonphysical_entries(const StateLayout& layout, const Real* y);
 
-class GuardedSystem final : public OdeSystem {
+class GuardedSystem final : public ForwardingSystem {
  public:
   // The checks use inner.state_layout(); a system without a layout is checked for finiteness.
-  explicit GuardedSystem(OdeSystem& inner) : inner_(inner) {}
+  explicit GuardedSystem(OdeSystem& inner) : ForwardingSystem(inner) {}
 
   // From time t on, rhs() puts a NaN into the velocity derivative of particle 0, or into the
   // first entry of the derivative if there is no velocity field (testing aid).
   void inject_nan_from(Real t) { inject_from_ = t; }
 
-  std::size_t size() const override { return inner_.size(); }
-  const StateLayout* state_layout() const override { return inner_.state_layout(); }
   int rhs(Real t, const Real* y, Real* ydot) override;
-  bool has_stiff_diagonal() const override { return inner_.has_stiff_diagonal(); }
   int stiff_diagonal(Real t, const Real* y, Real* c) override;
-  std::size_t position_offset() const override { return inner_.position_offset(); }
-  std::size_t velocity_offset() const override { return inner_.velocity_offset(); }
-  std::size_t position_size() const override { return inner_.position_size(); }
-  Real max_stable_dt(Real t, const Real* y, const Real* ydot) override { return inner_.max_stable_dt(t, y, ydot); }
-  int num_roots() const override { return inner_.num_roots(); }
-  int roots(Real t, const Real* y, Real* g) override { return inner_.roots(t, y, g); }
   std::string last_error() const override { return own_error_ ? error_ : inner_.last_error(); }
 
   long guarded_failures() const { return failures_; }
@@ -55,7 +46,6 @@ class GuardedSystem final : public OdeSystem {
   int fail(Real t, const std::string& what, const std::vector<std::size_t>& entries);
   int check(Real t, const Real* out, std::size_t n, const char* what);
 
-  OdeSystem& inner_;
   Real inject_from_ = std::numeric_limits<Real>::infinity();
   bool own_error_ = false;
   std::string error_;

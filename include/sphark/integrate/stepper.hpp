@@ -24,6 +24,19 @@
 // the returned state is a genuine leapfrog state at the returned time.
 //
 // ark-imex on a system without a stiff part is an error (no silent fallback to ERK).
+//
+// Distributed runs (StepperOptions::communicator over MPI): each rank's stepper advances its
+// local part of the state; every rank calls every Stepper function, in the same order. The
+// system's return codes are made collective (the most severe code of any rank, with the
+// failing ranks' messages in failure_reason()), max_stable_dt is the minimum over the ranks and
+// each root function is reduced by StepperOptions::root_reduction, so all ranks take the same
+// steps, fail together and find the same roots.
+//
+// Resizing (particles created, accreted or removed; migration to and from other ranks): between
+// advance() calls, the system's size() may change; resize() then hands the stepper the new state
+// at its current time. ARKODE keeps its step size and error history (ERKStepResize /
+// ARKStepResize; before the first advance() its memory is created afresh), the leapfrog its
+// time and step; the next advance() continues from there. Distributed: collective.
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,6 +66,24 @@ class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
   virtual std::vector<Real> resume_data() const { return {}; }
   // After RootFound: one entry per g_k, +1 / -1 if g_k crossed zero increasing / decreasing.
   virtual std::vector<int> roots_found() const = 0;
+
+  // The new state after system.size() changed (see above), at the current time.
+  struct Resized {
+    const Real* y = nullptr;     // system.size() entries
+    // Per-entry absolute tolerances of the new state: required when the run was configured with
+    // one atol per entry, ignored otherwise.
+    const Real* atol = nullptr;
+    // The leapfrog's next-kick derivative in the new entry order (what carried_data() returned,
+    // reordered like y); nullptr: evaluated afresh at y (then the step differs from an
+    // uninterrupted run where the RHS depends on v). Ignored by the ARKODE steppers.
+    const Real* carried = nullptr;
+  };
+  // Throws std::invalid_argument for a missing per-entry atol (on every rank of a distributed
+  // run); std::logic_error if the stepper cannot resize.
+  virtual void resize(const Resized& state);
+  // Per-entry data aligned with the state that must move with its entries when they are
+  // reordered or migrated (the leapfrog's next-kick derivative); empty for ARKODE.
+  virtual std::vector<Real> carried_data() const { return {}; }
 };
 
 // Throws std::invalid_argument (one line naming the option and its value) for bad options:

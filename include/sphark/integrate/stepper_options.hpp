@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sphark/core/types.hpp"
+#include "sphark/parallel/communicator.hpp"
 
 namespace sphark {
 
@@ -42,6 +43,22 @@ struct StepperOptions {
   // ARK IMEX pair of ARKODE 6.4.1: ARK324L2SA (order 3), ARK436L2SA (4), ARK437L2SA (4),
   // ARK548L2SA (5), ARK548L2SAb (5).
   std::string imex_table = "ARK436L2SA";
+  // Distributed run: the ranks that each hold a part of the state (system.size() is then the
+  // local length, every rank passes the same options). ARKODE runs on SUNDIALS' parallel
+  // vectors (global norms), and the system's return codes, max_stable_dt (min), root functions
+  // (root_reduction) and option checks are reduced over the ranks, so every rank takes the
+  // same steps (stepper.hpp). Default: serial, no MPI (the serial code path, unchanged).
+  Communicator communicator;
+  // ARKODE's error norm summed exactly (parallel/sundials_vector.hpp: independent of the order
+  // of the entries and of how they are split over ranks), so that the run takes exactly the
+  // steps of the same run on any number of ranks. Distributed runs always use it; false keeps
+  // SUNDIALS' own (sequential) sum for serial runs, whose steps then agree with a distributed
+  // run's until round-off first tips an accept/reject decision.
+  bool reproducible_norms = false;
+  // Distributed runs: how each root function g_k is combined over the ranks (each rank's
+  // roots() sees only its own particles); missing entries mean ReduceOp::Min ("the first
+  // particle to cross").
+  std::vector<ReduceOp> root_reduction;
 };
 
 struct StepperStats {

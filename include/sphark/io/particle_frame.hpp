@@ -2,6 +2,7 @@
 // A snapshot of particle data handed to writers: positions plus named point arrays.
 // The arrays are views (no copies); the caller keeps the data alive during write().
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct ParticleFrame {
   std::size_t count = 0;           // number of points
   const Real* positions = nullptr; // dim values per point, point-major
   std::vector<PointArray> arrays;
+  const std::int64_t* ids = nullptr;  // optional global particle ids: written as the Int64 array "id"
 };
 
 }  // namespace sphark

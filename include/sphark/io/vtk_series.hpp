@@ -42,7 +42,7 @@ class VtkSeriesWriter {
 // Writes one frame to `path` as a .vtp (same format as the series; atomically).
 void write_vtp(const std::filesystem::path& path, const ParticleFrame& frame, Real t);
 
-// `s` for an XML attribute value: & < > " ' as entities.
+// s with & < > " ' as XML entities (file and array names in .pvd / .pvtp files).
 std::string xml_escape(const std::string& s);
 
 // The .pvd text for the given (time, file) entries (file names XML-escaped, times as %.17g).

@@ -31,4 +31,8 @@ struct VtpContents {
 // Throws std::runtime_error if the file is missing or not a readable .vtp.
 VtpContents read_vtp(const std::filesystem::path& path);
 
+// A .pvtp (parallel VTK, io/pvtp_series.hpp) through ParaView's reader (vtkXMLPPolyDataReader):
+// all pieces merged, in piece order. Field data (the time) is not part of a .pvtp: time unset.
+VtpContents read_pvtp(const std::filesystem::path& path);
+
 }  // namespace sphark

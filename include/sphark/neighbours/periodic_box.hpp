@@ -52,6 +52,12 @@ struct PeriodicBox {
     for (std::size_t a = 0; a < n; ++a)
       Eigen::Map<Vec<D>>(out + D * a) = wrap(Eigen::Map<const Vec<D>>(x + D * a));
   }
+
+  bool any_periodic() const {  // (parallel/halo: periodic images to send)
+    for (bool p : periodic)
+      if (p) return true;
+    return false;
+  }
 };
 
 // The minimum-image separation for hot pair loops: L and 1/L held by value (1/L = 0 on open
