@@ -94,6 +94,13 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   }
   if (opt_.cleaning != Cleaning::None) psi_.assign(n_, 0);
   if (opt_.field == FieldRepresentation::EulerPotentials) alpha_.assign(n_, 0);
+  if (opt_.self_gravity) {
+    if (D != 3 || !opt_.evolve_particles) throw std::invalid_argument("SpmhdScheme: self-gravity needs D = 3 and moving particles");
+    gravity_ = make_self_gravity<K>(opt_.gravity_solver, GravityOptions{opt_.G, opt_.gravity_theta, 8});
+    gravity_acc_.assign(3 * n_, 0);
+    gravity_potential_.assign(n_, 0);
+    zeta_over_omega_.assign(n_, 0);
+  }
 }
 
 template <int D, class K>
@@ -207,6 +214,7 @@ int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) {  // may thro
   ScopedPhase timer(Phase::Rhs);
   if (const int rc = prepare(y); rc != 0) return rc;
   force_pass(y, ydot);
+  if (opt_.self_gravity) gravity_pass(ydot);
   return 0;
 }
 
@@ -242,7 +250,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) {
 }
 
 template <int D, class K>
-Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y, const Real* /*ydot*/) noexcept {
+Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) noexcept {
   constexpr Real failed = std::numeric_limits<Real>::quiet_NaN();  // documented in the header
   try {
     if (prepare(y) != 0) return failed;  // error_ says why
@@ -260,6 +268,13 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y, const Real* /*y
       return failed;
     }
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
+  }
+  if (opt_.self_gravity) {  // the force criterion, with the accelerations of ydot or of f(t, y)
+    if (!ydot) {
+      if (evaluate(t, y) != 0) return failed;
+      ydot = scratch_.data();
+    }
+    dt = std::min(dt, force_time_step(ydot));
   }
   return dt;
 }

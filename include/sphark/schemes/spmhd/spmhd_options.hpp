@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "sphark/core/types.hpp"
+#include "sphark/gravity/self_gravity.hpp"
 
 namespace sphark {
 
@@ -42,6 +43,14 @@ struct SpmhdOptions {
   Real alpha_b = 0.0;           // artificial resistivity, seed 000 eq. (10) (0 = off)
 
   Real courant = 0.3;           // for max_stable_dt: C h / v_sig
+
+  // Self-gravity (3D): kernel softening with each particle's own h and the grad-h term (Price &
+  // Monaghan 2007; gravity/), isolated boundaries even in a periodic box (no Ewald sum).
+  bool self_gravity = false;
+  GravitySolver gravity_solver = GravitySolver::Tree;
+  Real G = 1;                   // gravitational constant in code units
+  Real gravity_theta = 0.5;     // tree opening angle
+  Real force_courant = 0.25;    // with gravity, max_stable_dt also <= force_courant sqrt(h / |a|)
   Real skin = 0.25;             // Verlet skin: particle i lists neighbours within 2 h_i (1 + skin)
 };
 

@@ -18,6 +18,7 @@
 // from the state and derivatives scattered back. Neighbour rows are sorted by particle index,
 // so every sum runs in the same order whatever the slots: results do not depend on them.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -91,6 +92,11 @@ class SpmhdScheme final : public OdeSystem {
     return in_particle_order(cleaning_speeds_, 1, out_cleaning_speeds_);
   }
 
+  // Self-gravity of the most recent rhs() (or evaluate()): the potential energy (1/2) sum m Phi
+  // (self terms included; 0 without gravity) and the potentials per unit mass, particle order.
+  Real potential_energy() const { return potential_energy_; }
+  const std::vector<Real>& potential() const { return in_particle_order(gravity_potential_, 1, out_potential_); }
+
   // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
   // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
   int evaluate(Real t, const Real* y) noexcept;
@@ -108,6 +114,9 @@ class SpmhdScheme final : public OdeSystem {
   void euler_potential_field(const Real* x, const Real* alpha);
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
+  void gravity_pass(Real* ydot);                   // src/schemes/spmhd/spmhd_gravity.cpp
+  void gravitational_zeta();                       // zeta_a / Omega_a of the grad-h term
+  Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
 
   // The per-slot array `slots` (comps per particle) in particle order, cached per RHS.
   struct ParticleOrderCache {
@@ -125,7 +134,7 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> x_from_state_, v_, u_, psi_, alpha_;  // inputs gathered from the state (slot order)
   long version_ = 0;                                      // bumped by every prepare()
   mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_,
-      out_cleaning_speeds_;
+      out_cleaning_speeds_, out_potential_;
   SpmhdOptions opt_;
   StateLayout layout_;
   NeighbourSearch<D> ns_;
@@ -154,6 +163,11 @@ class SpmhdScheme final : public OdeSystem {
   std::size_t interacting_pairs_ = 0;
   double pairs_total_ = 0, h_iterations_ = 0;
   Real cleaning_speed_ = 0;         // global c_h (the largest c_h,a with local_ch)
+  // Self-gravity (opt_.self_gravity): the solver, its accelerations (D x n) and potentials, and
+  // zeta_a / Omega_a of the grad-h term, slot order.
+  std::unique_ptr<SelfGravity> gravity_;
+  std::vector<Real> gravity_acc_, gravity_potential_, zeta_over_omega_;
+  Real potential_energy_ = 0;
   long rhs_calls_ = 0;
   long builds_ = 0;
   std::string error_;
