@@ -73,14 +73,10 @@ BarotropicEos::BarotropicEos(const BarotropicEosParams& p) : p_(p) {
     band_[0].q_anchor = band_[1].q_anchor;
   }
   // u: zero at rho_1 (lower edge of band first_isothermal + 1), integrated outwards both ways.
-  auto u_rise = [](const Band& b, Real rho) {  // int_{rho_anchor}^{rho} q dln(rho) within b
-    if (b.exponent == 0) return b.q_anchor * std::log(rho / b.rho_anchor);
-    return b.q_anchor * (std::pow(rho / b.rho_anchor, b.exponent) - 1) / b.exponent;
-  };
   const int k1 = first_isothermal + 1;
   band_[k1].u_anchor = 0;
-  for (int k = k1 + 1; k < n; ++k) band_[k].u_anchor = band_[k - 1].u_anchor + u_rise(band_[k - 1], band_[k].rho_start);
-  for (int k = k1 - 1; k >= 1; --k) band_[k].u_anchor = band_[k + 1].u_anchor - u_rise(band_[k], band_[k + 1].rho_start);
+  for (int k = k1 + 1; k < n; ++k) band_[k].u_anchor = band_[k - 1].u_anchor + energy_rise(band_[k - 1], band_[k].rho_start);
+  for (int k = k1 - 1; k >= 1; --k) band_[k].u_anchor = band_[k + 1].u_anchor - energy_rise(band_[k], band_[k + 1].rho_start);
   band_[0].u_anchor = band_[1].u_anchor;  // band 0 is anchored at band 1's lower edge
 }
 
@@ -97,10 +93,14 @@ Real BarotropicEos::sound_speed(Real rho) const {
   return std::sqrt(q * (1 + b.exponent > 1 ? 1 + b.exponent : 1));
 }
 
+Real BarotropicEos::energy_rise(const Band& b, Real rho) {
+  if (b.exponent == 0) return b.q_anchor * std::log(rho / b.rho_anchor);
+  return b.q_anchor * (std::pow(rho / b.rho_anchor, b.exponent) - 1) / b.exponent;
+}
+
 Real BarotropicEos::specific_energy(Real rho) const {
   const Band& b = band_of(rho);
-  if (b.exponent == 0) return b.u_anchor + b.q_anchor * std::log(rho / b.rho_anchor);
-  return b.u_anchor + b.q_anchor * (std::pow(rho / b.rho_anchor, b.exponent) - 1) / b.exponent;
+  return b.u_anchor + energy_rise(b, rho);
 }
 
 }  // namespace sphark

@@ -92,6 +92,8 @@ class BarotropicEos {
     Real exponent = 0;
   };
   const Band& band_of(Real rho) const { return band_[band_index(rho)]; }
+  // int_{rho_anchor}^{rho} q dln(rho) within band b
+  static Real energy_rise(const Band& b, Real rho);
 
   BarotropicEosParams p_;
   std::array<Band, kMaxBands> band_{};
