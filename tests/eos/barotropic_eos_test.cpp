@@ -187,6 +187,18 @@ TEST(BarotropicEos, MonotoneExceptWherePhantomsAmbientJoinLetsPressureFall) {
   EXPECT_NEAR(eos.pressure(rho_s / 30) / eos.pressure(rho_s), 1.0, 1e-14);
 }
 
+TEST(BarotropicEos, ThermalEnergyForTheSinkChecks) {
+  const BarotropicEos eos = collapse_eos();
+  const BarotropicEosParams& p = eos.params();
+  const Real rhos[] = {0.1 * p.rho0, 0.75 * p.rho0, 10 * p.rho0, 10 * p.rho1, 10 * p.rho2, 10 * p.rho3, 10 * p.rho4};
+  const Real gammas[] = {1, 1, 1, p.gamma1, p.gamma2, p.gamma3, p.gamma4};
+  for (int k = 0; k < 7; ++k) {
+    const Real q = eos.pressure(rhos[k]) / rhos[k];
+    const Real expected = gammas[k] > 1 ? q / (gammas[k] - 1) : 1.5 * q;
+    EXPECT_NEAR(eos.thermal_energy(rhos[k]) / expected, 1.0, 1e-14) << k;
+  }
+}
+
 TEST(BarotropicEos, RejectsBadParameters) {
   BarotropicEosParams p = price_bate_params(CodeUnits::collapse(), kSoundSpeed);
   EXPECT_NO_THROW(BarotropicEos{p});

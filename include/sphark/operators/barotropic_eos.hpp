@@ -74,6 +74,15 @@ class BarotropicEos {
   Real sound_speed(Real rho) const;
   // u(rho) = int_{rho_1}^{rho} P / r^2 dr (negative below rho_1).
   Real specific_energy(Real rho) const;
+  // Specific THERMAL energy, for the sink-creation energy checks (not u(rho) above, which is
+  // the work integral and is negative below rho_1): P / ((gamma - 1) rho) in the power-law bands
+  // (Phantom's ptmass_create for ieos = 8), and 3/2 P / rho in the isothermal bands and the join,
+  // where Phantom's formula would divide by gamma - 1 = 0 (3/2 P / rho is its fallback for other
+  // equations of state: a monatomic-like gas kept isothermal by cooling). Jumps at rho_1.
+  Real thermal_energy(Real rho) const {
+    const Real e = band_of(rho).exponent;
+    return pressure_over_density(rho) * (e > 0 ? 1 / e : 1.5);
+  }
   // The band's effective gamma = 1 + e (Phantom's gamma_barotropic reports 1 in the join).
   Real gamma(Real rho) const { return 1 + band_of(rho).exponent; }
 
