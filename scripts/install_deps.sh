@@ -3,7 +3,7 @@
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config
       libsundials-dev libeigen3-dev libvtk9-dev zlib1g-dev
-      libgtest-dev libgmock-dev libbenchmark-dev
+      libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
       python3-matplotlib python3-numpy python3-vtk9 xvfb xauth)
 missing=()
 for p in "${pkgs[@]}"; do
