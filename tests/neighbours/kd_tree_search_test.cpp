@@ -15,17 +15,12 @@
 #include "sphark/neighbours/kd_tree_search.hpp"
 #include "sphark/neighbours/neighbour_search.hpp"
 
+#include "../support/random_points.hpp"
+
 using namespace sphark;
 
 namespace {
-template <int D>
-std::vector<Real> random_points(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<Real> u(0.0, 1.0);
-  std::vector<Real> x(D * n);
-  for (auto& v : x) v = u(rng);
-  return x;
-}
+using test::random_points;
 
 template <int D>
 std::optional<PeriodicBox<D>> unit_box(std::array<bool, D> periodic) {
