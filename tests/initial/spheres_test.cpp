@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "sphark/initial/spheres.hpp"
@@ -47,6 +48,8 @@ TEST(UniformSphere, MassCountAndCentreOfMass) {
       // symmetry of the centre, and several shells at one radius): measured misses are
       // <= 0.4 % from 1,000 particles up (docs/collapse_parts.md); asserted: 1 %
       EXPECT_LE(std::abs(n - static_cast<Real>(want)), 0.01 * want) << want;
+      RecordProperty(std::string(lat == CloseLattice::fcc ? "fcc_" : "hcp_") + std::to_string(want),
+                     std::to_string(p.size()));
       EXPECT_NEAR(n * p.particle_mass, spec.mass, 1e-15 * n * spec.mass);
       // no shell of sites within round-off of the surface: the count is stable under a 1e-9 change
       EXPECT_EQ(close_packed_ball_count(lat, p.spacing * (1 - 1e-9), spec.radius), p.size());
