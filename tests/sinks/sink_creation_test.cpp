@@ -108,6 +108,15 @@ TEST(SinkCreation, BaselineClumpPassesEveryCheck) {
   EXPECT_LT(t.energies.total(), 0);
 }
 
+TEST(SinkCreation, ALoneParticleIsNeverASink) {
+  Clump c;
+  c.params.accretion_radius = 1e-3;  // nothing within r_acc but the candidate
+  c.h.assign(c.n, 1e-4);
+  const SinkCreationTest t = test_sink_creation(c.view(), {}, c.params);
+  EXPECT_EQ(t.clump.size(), 1u);
+  EXPECT_NE(t.result, SinkCheck::ok);
+}
+
 TEST(SinkCreation, NoCandidateBelowTheThreshold) {
   Clump c;
   c.params.rho_sink = 10;  // the candidate's density is 10: not above

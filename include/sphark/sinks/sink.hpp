@@ -52,7 +52,7 @@ using PairPotential = std::function<Real(Real r, Real h_a, Real h_b)>;
 struct SinkParams {
   Real rho_sink = 0;            // creation density threshold (Phantom rho_crit)
   Real accretion_radius = 0;    // r_acc of new sinks
-  Real creation_radius = 0;     // no new sink within this distance of an existing one (Phantom r_crit)
+  Real creation_radius = 0;     // no new sink within this distance of an existing one (Phantom r_crit; 0: no limit)
   Real unconditional_fraction = 0.8;  // gas inside f r_acc is accreted without checks (Phantom f_acc)
   Real G = 1;
   PairPotential pair_potential;        // see above

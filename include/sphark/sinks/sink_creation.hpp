@@ -50,8 +50,9 @@ std::string to_string(SinkCheck c);
 struct ClumpEnergies {
   Real kinetic = 0, rotational = 0, thermal = 0, potential = 0;
   Real total() const { return kinetic + thermal + potential; }
-  Real alpha() const { return std::abs(thermal / potential); }
-  Real beta() const { return std::abs(rotational / potential); }
+  // +infinity for a clump without potential energy (a lone particle): never created
+  Real alpha() const { return potential != 0 ? std::abs(thermal / potential) : HUGE_VAL; }
+  Real beta() const { return potential != 0 ? std::abs(rotational / potential) : HUGE_VAL; }
 };
 
 // The densest gas particle if its density exceeds rho_sink (ties: the lowest index).
