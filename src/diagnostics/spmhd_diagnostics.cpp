@@ -43,6 +43,7 @@ SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<D, K>& s, Real t, const Real* y) 
       d.kinetic_energy += 0.5 * m[a] * v2;
     }
     if (u) d.thermal_energy += m[a] * u[a];
+    else if (const BarotropicEos* eos = s.barotropic_eos()) d.thermal_energy += m[a] * eos->specific_energy(rho);
     if (psi && s.options().local_ch) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho);  // state psi / c_h,a
     else if (psi && ch > 0) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho * ch * ch);
   }

@@ -37,11 +37,16 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
     : n_(masses.size()), m_(std::move(masses)), opt_(opt), layout_(n_), ns_(std::move(box)) {
   if (n_ == 0) throw std::invalid_argument("SpmhdScheme: no particles");
   if (!(opt_.gamma > 1)) throw std::invalid_argument("SpmhdScheme: gamma must be > 1");
+  if (opt_.barotropic) {
+    eos_.emplace(*opt_.barotropic);
+    opt_.alpha_u = 0;  // no internal energy to conduct
+  }
   if (!(opt_.eta > 0)) throw std::invalid_argument("SpmhdScheme: eta must be > 0");
   if (opt_.sigma < 0) throw std::invalid_argument("SpmhdScheme: sigma must be >= 0");
   if (!(opt_.overclean >= 1)) throw std::invalid_argument("SpmhdScheme: overclean must be >= 1");
   if (opt_.evolve_particles) {
-    layout_.add(Field::Position, D).add(Field::Velocity, D).add(Field::InternalEnergy, 1);
+    layout_.add(Field::Position, D).add(Field::Velocity, D);
+    if (!opt_.barotropic) layout_.add(Field::InternalEnergy, 1);
     if (opt_.field == FieldRepresentation::MagneticField) {
       layout_.add(Field::MagneticField, 3);
     } else {
@@ -90,7 +95,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   x_from_state_.assign(x_.size(), 0);
   if (opt_.evolve_particles) {
     v_.assign(D * n_, 0);
-    u_.assign(n_, 0);
+    if (!opt_.barotropic) u_.assign(n_, 0);
   }
   if (opt_.cleaning != Cleaning::None) psi_.assign(n_, 0);
   if (opt_.field == FieldRepresentation::EulerPotentials) alpha_.assign(n_, 0);
@@ -173,7 +178,7 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
       p = perm_.data();  // a rebuild renumbers the slots
     }
     gather(Field::Velocity, D, v_);
-    gather(Field::InternalEnergy, 1, u_);
+    if (!opt_.barotropic) gather(Field::InternalEnergy, 1, u_);
   } else if (!built_) {
     if (const int rc = ensure_neighbours_and_density(x)) return rc;
     p = perm_.data();
@@ -186,12 +191,18 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     gather(Field::EulerAlpha, 1, alpha_);
     euler_potential_field(x, alpha_.data());
   }
-  const Real* u = opt_.evolve_particles ? u_.data() : nullptr;
+  const Real* u = opt_.evolve_particles && !opt_.barotropic ? u_.data() : nullptr;
+  const BarotropicEos* eos = eos_ ? &*eos_ : nullptr;
   Real cmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : cmax)
   for (std::size_t a = 0; a < n_; ++a) {
-    P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
-    sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    if (eos) {
+      P_[a] = eos->pressure(rho_[a]);
+      sound_speed_[a] = eos->sound_speed(rho_[a]);
+    } else {
+      P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
+      sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    }
     const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
     // fast magnetosonic speed (upper bound)
     fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);

@@ -4,7 +4,10 @@
 #include <string_view>
 
 #include "sphark/core/types.hpp"
+#include <optional>
+
 #include "sphark/gravity/self_gravity.hpp"
+#include "sphark/operators/barotropic_eos.hpp"
 
 namespace sphark {
 
@@ -21,6 +24,9 @@ enum class FieldRepresentation {
 
 struct SpmhdOptions {
   Real gamma = 5.0 / 3.0;       // adiabatic index, P = (gamma - 1) rho u
+  // A barotropic gas P = P(rho) (Price & Bate 2007; operators/barotropic_eos.hpp) instead: the
+  // state then holds no internal energy, and the conductivity (alpha_u) is off.
+  std::optional<BarotropicEosParams> barotropic;
   Real eta = 1.2;               // h = eta (m/rho)^(1/D), seed 000 eq. (5)
   Real h_tolerance = 1e-10;     // relative Newton tolerance on h
   Real h_initial = 0;           // first guess for h (0: from the bounding box and N)
