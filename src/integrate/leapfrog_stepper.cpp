@@ -62,12 +62,16 @@ class LeapfrogStepper final : public Stepper {
     mark_blocks();
   }
 
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return steps_to(t_out, y, t, false); }
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override { return steps_to(t_out, y, t, true); }
+
+  // Steps towards t_out: all the way, or one (single).
+  AdvanceStatus steps_to(Real t_out, Real* y, Real& t, bool single) {
     ScopedPhase timer(Phase::Advance);
     roots_.clear();
     if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
     if (!failed_ && !started_) start();
-    while (!failed_ && t_ < t_out) {
+    for (bool first = true; !failed_ && t_ < t_out && (first || !single); first = false) {
       Real dt = choose_dt();
       if (failed_) break;
       bool lands = t_ + dt * (1 + 1e-10) >= t_out;  // no sliver steps before t_out
@@ -85,7 +89,8 @@ class LeapfrogStepper final : public Stepper {
       accept(dt, lands ? t_out : NAN);
     }
     finish(y, t);
-    return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
+    if (failed_) return AdvanceStatus::Failed;
+    return t < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
   }
 
   StepperStats stats() const override {

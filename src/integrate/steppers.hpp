@@ -24,6 +24,7 @@ class WrapperOwningStepper final : public Stepper {
   WrapperOwningStepper(std::unique_ptr<OdeSystem> wrapper, std::unique_ptr<Stepper> inner)
       : wrapper_(std::move(wrapper)), inner_(std::move(inner)) {}
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return inner_->advance(t_out, y, t); }
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override { return inner_->step(t_out, y, t); }
   StepperStats stats() const override { return inner_->stats(); }
   std::string failure_reason() const override { return inner_->failure_reason(); }
   std::vector<Real> resume_data() const override { return inner_->resume_data(); }

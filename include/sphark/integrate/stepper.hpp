@@ -46,7 +46,8 @@
 
 namespace sphark {
 
-enum class AdvanceStatus { Reached, RootFound, Failed };
+// Stepped: step() took one step and t is still before t_out.
+enum class AdvanceStatus { Reached, RootFound, Failed, Stepped };
 
 class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
  public:
@@ -56,6 +57,10 @@ class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
   // The stepper keeps its own state: the content of y on entry is ignored.
   // Throws std::invalid_argument if t_out is before the current time.
   virtual AdvanceStatus advance(Real t_out, Real* y, Real& t) = 0;
+  // One step towards t_out (landing on it, never past it): Stepped with t < t_out, Reached at
+  // t_out, or RootFound / Failed as advance(). Between two calls the caller may inspect y and
+  // resize(). The step-size bounds of advance() are taken at every call. (Default: advance().)
+  virtual AdvanceStatus step(Real t_out, Real* y, Real& t) { return advance(t_out, y, t); }
   virtual StepperStats stats() const = 0;
   // After Failed: flag name + message, time, and system.last_error().
   virtual std::string failure_reason() const = 0;
