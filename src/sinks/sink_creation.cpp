@@ -109,8 +109,11 @@ SinkCheck check_smoothing_length(const GasView& gas, std::size_t candidate, Real
 
 SinkCheck check_potential_minimum(const GasView& gas, std::size_t candidate, const std::vector<std::uint32_t>& clump) {
   require(gas.phi, "phi");
+  // ties within round-off count as the minimum (on a symmetric configuration several particles
+  // share it, and which one the summation order puts lowest is not physics)
+  const Real floor = gas.phi[candidate] - 1e-12 * std::abs(gas.phi[candidate]);
   for (std::uint32_t a : clump)
-    if (gas.phi[a] < gas.phi[candidate]) return SinkCheck::not_potential_minimum;
+    if (gas.phi[a] < floor) return SinkCheck::not_potential_minimum;
   return SinkCheck::ok;
 }
 

@@ -64,11 +64,21 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   }
   if (opt_.cleaning != Cleaning::None) layout_.add(Field::Psi, 1);
 
-  h_.assign(n_, opt_.h_initial);
-  if (!(opt_.h_initial > 0)) {
-    // First guess from the bounding box of the initial (or fixed) positions, set in prepare().
-    h_.assign(n_, 0);
+  if (opt_.sink_particles) {  // a second species: sink particles (none yet), after every gas field
+    if (D != 3 || !opt_.self_gravity) throw std::invalid_argument("SpmhdScheme: sink particles need D = 3 and self-gravity");
+    layout_.add_species(Species::Sink, 0).add(Field::Position, 3).add(Field::Velocity, 3).add(Field::Mass, 1).add(Field::Spin, 3);
   }
+  h_.assign(n_, opt_.h_initial > 0 ? opt_.h_initial : 0);  // 0: first guess from the bounding box, in prepare()
+  allocate_per_particle();
+  if (opt_.self_gravity) {
+    if (D != 3 || !opt_.evolve_particles) throw std::invalid_argument("SpmhdScheme: self-gravity needs D = 3 and moving particles");
+    gravity_ = make_self_gravity<K>(opt_.gravity_solver, GravityOptions{opt_.G, opt_.gravity_theta, 8});
+  }
+}
+
+// Every per-particle buffer for n_ particles (h_ and x_ are set by the caller), slots = particles.
+template <int D, class K>
+void SpmhdScheme<D, K>::allocate_per_particle() {
   rho_.assign(n_, 0);
   omega_.assign(n_, 1);
   P_.assign(n_, 0);
@@ -100,8 +110,6 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   if (opt_.cleaning != Cleaning::None) psi_.assign(n_, 0);
   if (opt_.field == FieldRepresentation::EulerPotentials) alpha_.assign(n_, 0);
   if (opt_.self_gravity) {
-    if (D != 3 || !opt_.evolve_particles) throw std::invalid_argument("SpmhdScheme: self-gravity needs D = 3 and moving particles");
-    gravity_ = make_self_gravity<K>(opt_.gravity_solver, GravityOptions{opt_.G, opt_.gravity_theta, 8});
     gravity_acc_.assign(3 * n_, 0);
     gravity_potential_.assign(n_, 0);
     zeta_over_omega_.assign(n_, 0);
@@ -226,6 +234,7 @@ int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) {  // may thro
   if (const int rc = prepare(y); rc != 0) return rc;
   force_pass(y, ydot);
   if (opt_.self_gravity) gravity_pass(ydot);
+  if (opt_.sink_particles) sink_pass(y, ydot);
   return 0;
 }
 

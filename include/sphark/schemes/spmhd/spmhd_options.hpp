@@ -6,6 +6,7 @@
 #include "sphark/core/types.hpp"
 #include <optional>
 
+#include "sphark/gravity/point_mass_gravity.hpp"
 #include "sphark/gravity/self_gravity.hpp"
 #include "sphark/operators/barotropic_eos.hpp"
 
@@ -57,6 +58,11 @@ struct SpmhdOptions {
   Real G = 1;                   // gravitational constant in code units
   Real gravity_theta = 0.5;     // tree opening angle
   Real force_courant = 0.25;    // with gravity, max_stable_dt also <= force_courant sqrt(h / |a|)
+  // Sink particles (a second species: position, velocity, mass, spin; none at first), with
+  // gravity on the gas and on each other (gravity/point_mass_gravity.hpp). Created and fed
+  // between steps (sinks/sink_events.hpp).
+  bool sink_particles = false;
+  SinkSoftening sink_softening;
   Real skin = 0.25;             // Verlet skin: particle i lists neighbours within 2 h_i (1 + skin)
 };
 

@@ -96,6 +96,14 @@ class SpmhdScheme final : public OdeSystem {
   // Self-gravity of the most recent rhs() (or evaluate()): the potential energy (1/2) sum m Phi
   // (self terms included; 0 without gravity) and the potentials per unit mass, particle order.
   Real potential_energy() const { return potential_energy_; }
+  // Sink particles (options().sink_particles): their count in the state.
+  std::size_t sinks() const { return layout_.particles(Species::Sink); }
+  // A new particle set between steps: the gas particles kept[i] (old numbering, ascending or in
+  // any order) become particles i, and the state holds `sinks` sink particles. Their h carry
+  // over as first guesses; the neighbour lists are rebuilt at the next evaluation. The caller
+  // moves the state (resize_species) and the stepper (Stepper::resize).
+  void change_particles(const std::vector<std::size_t>& kept, std::size_t sinks);
+
   // The barotropic EOS (options().barotropic), or nullptr for the adiabatic gas.
   const BarotropicEos* barotropic_eos() const { return eos_ ? &*eos_ : nullptr; }
   const std::vector<Real>& potential() const { return in_particle_order(gravity_potential_, 1, out_potential_); }
@@ -118,6 +126,8 @@ class SpmhdScheme final : public OdeSystem {
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
   void gravity_pass(Real* ydot);                   // src/schemes/spmhd/spmhd_gravity.cpp
+  void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
+  void allocate_per_particle();
   void gravitational_zeta();                       // zeta_a / Omega_a of the grad-h term
   Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
 
@@ -172,6 +182,8 @@ class SpmhdScheme final : public OdeSystem {
   std::optional<BarotropicEos> eos_;  // opt_.barotropic
   std::unique_ptr<SelfGravity> gravity_;
   std::vector<Real> gravity_acc_, gravity_potential_, zeta_over_omega_;
+  SinkGasGravity<K> sink_gas_;          // sink-gas gravity (opt_.sink_particles)
+  std::vector<Real> sink_acc_, gas_from_sinks_, sink_potential_;
   Real potential_energy_ = 0;
   long rhs_calls_ = 0;
   long builds_ = 0;
