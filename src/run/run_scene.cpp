@@ -38,6 +38,16 @@ struct ParsedRun {
   std::vector<std::string> stored_options;  // argv[1..] of this run (a restart's stored ones first)
 };
 
+// The time options, given in the scene's time unit, in the system's time.
+void in_system_time(Real unit, CoreOptions& core, RunControlOptions& control) {
+  if (unit == 1) return;
+  core.t_end *= unit;
+  core.output_every *= unit;
+  core.dt *= unit;
+  control.checkpoint_every *= unit;
+  control.inject_nan_at *= unit;
+}
+
 void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* restart) {
   const std::vector<std::string> args = run_arguments(scene.program(), argc, argv, restart);
   OptionParser& parser = r.parser;
@@ -49,6 +59,7 @@ void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* 
   parser.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
   check_run_options(parser, r.control, r.core);
   scene.check_options(parser, r.core, r.control, restart != nullptr);
+  in_system_time(scene.time_unit(), r.core, r.control);
   r.runs = scene.run_names();
   if (restart) {  // one run: the checkpoint's
     const std::string name = restart->text("run");

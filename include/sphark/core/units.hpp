@@ -33,6 +33,9 @@ struct CodeUnits {
   Real density_g_cm3() const { return mass_g / (length_cm * length_cm * length_cm); }
   Real pressure_erg_cm3() const { return density_g_cm3() * velocity_cm_s() * velocity_cm_s(); }
   Real specific_energy_erg_g() const { return velocity_cm_s() * velocity_cm_s(); }
+  // Magnetic field: the code's B has magnetic pressure B^2 / 2 (mu0 = 1), Gaussian cgs B^2 / (8 pi),
+  // so B_gauss = B_code sqrt(4 pi P_unit).
+  Real magnetic_field_gauss() const { return std::sqrt(4 * kPi * pressure_erg_cm3()); }
 
   // cgs -> code
   Real length(Real cm) const { return cm / length_cm; }
@@ -40,6 +43,7 @@ struct CodeUnits {
   Real time(Real s) const { return s / time_s(); }
   Real velocity(Real cm_s) const { return cm_s / velocity_cm_s(); }
   Real density(Real g_cm3) const { return g_cm3 / density_g_cm3(); }
+  Real magnetic_field(Real gauss) const { return gauss / magnetic_field_gauss(); }
 
   // The collapse's units (Phantom's setup_sphereinbox): 1e16 cm, 1 M_sun, G = 1.
   static CodeUnits collapse() { return CodeUnits{1e16, cgs::solar_mass}; }

@@ -30,15 +30,20 @@ SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<D, K>& scheme, Real t, const Real
 
 // The VTK frame of an SPMHD state (refreshes the scheme at y, scheme.evaluate): density,
 // magnetic pressure B^2/2, div B (eq. (20)), h|div B|/|B|, then as the state has them pressure,
-// B, velocity, psi, and h. Positions are wrapped into `box` when one is given. Owns the copies
-// its arrays point into (valid until the next build()).
+// B, velocity, psi, and h. Positions are wrapped into `box` when one is given. With a sink
+// species (SpmhdOptions::sink_particles) the sinks follow the gas as points with their position
+// and velocity (NaN in the gas-only arrays), and two arrays more tell them apart: "species"
+// (0 gas, 1 sink) and "mass". Owns the copies its arrays point into (valid until the next build()).
 class SpmhdFrame {
  public:
   template <int D, class K>
   ParticleFrame build(SpmhdScheme<D, K>& scheme, Real t, const Real* y, const PeriodicBox<D>* box = nullptr);
 
  private:
-  std::vector<Real> positions_, density_, magnetic_pressure_, div_b_, error_, pressure_, field_, velocity_, psi_, h_;
+  void add_species_arrays(const std::vector<Real>& gas_masses, const Real* sink_masses, std::size_t sinks,
+                          ParticleFrame& f);
+  std::vector<Real> positions_, density_, magnetic_pressure_, div_b_, error_, pressure_, field_, velocity_, psi_, h_,
+      species_, mass_;
 };
 
 }  // namespace sphark

@@ -86,6 +86,10 @@ class Scene {
   // A case that is not a sequence of time-loop runs (e.g. an ensemble of short runs): its exit
   // code, or nullopt to go on with run_names(). Called after the start-up.
   virtual std::optional<int> run_instead(const CoreOptions& /*core*/) { return std::nullopt; }
+  // The unit, in the system's time, of the time options (--t-end, --output-every, --dt,
+  // --checkpoint-every, --inject-nan-at): 1, or a scene's natural time (the collapse's free-fall
+  // time). Asked after check_options(), whose checks see the options as given.
+  virtual Real time_unit() const { return 1; }
   // The runs the options ask for, in order; each gets <out>/<subdirectory(name)>.
   virtual std::vector<std::string> run_names() const = 0;
   // --restart continues the checkpoint's run alone; a scene names the option that contradicts it

@@ -67,19 +67,22 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot) {
 // min_a force_courant sqrt(h_a / |dv_a/dt|) of a derivative (the force criterion; +inf if a = 0).
 template <int D, class K>
 Real SpmhdScheme<D, K>::force_time_step(const Real* ydot) const {
-  const Real* dv_dt = ydot + layout_.offset(Field::Velocity);
   Real dt = std::numeric_limits<Real>::infinity();
-  for (std::size_t a = 0; a < n_; ++a) {
-    const Real acc = Eigen::Map<const Vec<D>>(dv_dt + D * perm_[a]).norm();
-    if (acc > 0) dt = std::min(dt, opt_.force_courant * std::sqrt(h_[a] / acc));
-  }
+  for (std::size_t a = 0; a < n_; ++a) dt = std::min(dt, force_step(a, ydot));
   return dt;
+}
+
+template <int D, class K>
+Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
+  const Real acc = Eigen::Map<const Vec<D>>(ydot + layout_.offset(Field::Velocity) + D * perm_[a]).norm();
+  return acc > 0 ? opt_.force_courant * std::sqrt(h_[a] / acc) : std::numeric_limits<Real>::infinity();
 }
 
 #define SPHARK_SPMHD_GRAVITY(D, K)                          \
   template void SpmhdScheme<D, K>::gravitational_zeta();   \
   template void SpmhdScheme<D, K>::gravity_pass(Real*);    \
-  template Real SpmhdScheme<D, K>::force_time_step(const Real*) const;
+  template Real SpmhdScheme<D, K>::force_time_step(const Real*) const; \
+  template Real SpmhdScheme<D, K>::force_step(std::size_t, const Real*) const;
 #define SPHARK_SPMHD_GRAVITY_2D_3D(K) SPHARK_SPMHD_GRAVITY(2, K<2>) SPHARK_SPMHD_GRAVITY(3, K<3>)
 SPHARK_KERNELS(SPHARK_SPMHD_GRAVITY_2D_3D)
 #undef SPHARK_SPMHD_GRAVITY_2D_3D

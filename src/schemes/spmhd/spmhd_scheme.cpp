@@ -270,6 +270,17 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) {
 }
 
 template <int D, class K>
+Real SpmhdScheme<D, K>::courant_step(std::size_t a, const Real* v) {
+  Real vsig = std::max(cleaning_speeds_[a], fast_speed_[a]);
+  if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
+  if (!std::isfinite(vsig) || !std::isfinite(fast_speed_[a]) || !std::isfinite(h_[a])) {
+    error_ = "max_stable_dt: non-finite signal speed or h at particle " + std::to_string(perm_[a]);
+    return std::numeric_limits<Real>::quiet_NaN();
+  }
+  return vsig > 0 ? opt_.courant * h_[a] / vsig : std::numeric_limits<Real>::infinity();
+}
+
+template <int D, class K>
 Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) noexcept {
   constexpr Real failed = std::numeric_limits<Real>::quiet_NaN();  // documented in the header
   try {
@@ -281,13 +292,9 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) n
   const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t a = 0; a < n_; ++a) {
-    Real vsig = std::max(cleaning_speeds_[a], fast_speed_[a]);
-    if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
-    if (!std::isfinite(vsig) || !std::isfinite(fast_speed_[a]) || !std::isfinite(h_[a])) {
-      error_ = "max_stable_dt: non-finite signal speed or h at particle " + std::to_string(perm_[a]);
-      return failed;
-    }
-    if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
+    const Real dt_a = courant_step(a, v);
+    if (std::isnan(dt_a)) return failed;
+    dt = std::min(dt, dt_a);
   }
   if (opt_.self_gravity) {  // the force criterion, with the accelerations of ydot or of f(t, y)
     if (!ydot) {
@@ -297,6 +304,32 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) n
     dt = std::min(dt, force_time_step(ydot));
   }
   return dt;
+}
+
+template <int D, class K>
+int SpmhdScheme<D, K>::stable_steps(Real t, const Real* y, const Real* ydot, std::vector<Real>& courant,
+                                     std::vector<Real>& force) noexcept {
+  try {
+    if (!opt_.evolve_particles) throw std::logic_error("stable_steps: fixed particles");
+    if (opt_.self_gravity && !ydot) {
+      if (evaluate(t, y) != 0) return 1;
+      ydot = scratch_.data();
+    } else if (prepare(y) != 0) {
+      return 1;
+    }
+    const Real* v = y + layout_.offset(Field::Velocity);
+    courant.assign(n_, std::numeric_limits<Real>::infinity());
+    force.assign(n_, std::numeric_limits<Real>::infinity());
+    for (std::size_t a = 0; a < n_; ++a) {
+      courant[perm_[a]] = courant_step(a, v);
+      if (std::isnan(courant[perm_[a]])) return 1;
+      if (opt_.self_gravity) force[perm_[a]] = force_step(a, ydot);
+    }
+    return 0;
+  } catch (...) {
+    error_ = current_exception_message("SpmhdScheme::stable_steps");
+    return 1;
+  }
 }
 
 #define SPHARK_SPMHD_SCHEME(K) \

@@ -60,6 +60,11 @@ class SpmhdScheme final : public OdeSystem {
   // wave speed, an h solve that does not converge) a quiet NaN, with last_error() saying why:
   // callers must treat NaN as "no step possible" (every comparison with it is false).
   Real max_stable_dt(Real t, const Real* y, const Real* ydot) noexcept override;
+  // Each gas particle's own stable step at y (particle order; what max_stable_dt() minimises):
+  // courant[a] = C h_a / v_sig,a and, with gravity, force[a] = force_courant sqrt(h_a / |dv_a/dt|)
+  // (accelerations from ydot, or f(t, y) when null); +inf where a criterion does not apply (no
+  // signal speed, no acceleration, no gravity). 0, or 1 with last_error() saying why.
+  int stable_steps(Real t, const Real* y, const Real* ydot, std::vector<Real>& courant, std::vector<Real>& force) noexcept;
   std::string last_error() const override { return error_; }
 
   // Number of RHS evaluations so far.
@@ -104,6 +109,17 @@ class SpmhdScheme final : public OdeSystem {
   // moves the state (resize_species) and the stepper (Stepper::resize).
   void change_particles(const std::vector<std::size_t>& kept, std::size_t sinks);
 
+  // The momentum budget of the RHS at y (diagnostics; refreshes the scheme at y, evaluate()):
+  // `total` = sum_a m_a dv_a/dt over gas and sinks, and `tensile` its part from the tensile-
+  // instability correction (seed 000, eq. (9)): -sum_a m_a B_a S_a, S_a the symmetric divergence
+  // sum_b m_b [B_a/(Omega_a rho_a^2) . grad W_ab(h_a) + B_b/(Omega_b rho_b^2) . grad W_ab(h_b)]
+  // (0 without the correction). Every other term conserves momentum (equal and opposite pair
+  // forces, the dual-tree gravity), so total - tensile is round-off. NaN when y cannot be evaluated.
+  struct MomentumBudget {
+    Vec<D> total = Vec<D>::Zero(), tensile = Vec<D>::Zero();
+  };
+  MomentumBudget momentum_budget(Real t, const Real* y);
+
   // The barotropic EOS (options().barotropic), or nullptr for the adiabatic gas.
   const BarotropicEos* barotropic_eos() const { return eos_ ? &*eos_ : nullptr; }
   const std::vector<Real>& potential() const { return in_particle_order(gravity_potential_, 1, out_potential_); }
@@ -130,6 +146,9 @@ class SpmhdScheme final : public OdeSystem {
   void allocate_per_particle();
   void gravitational_zeta();                       // zeta_a / Omega_a of the grad-h term
   Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
+  Real force_step(std::size_t slot, const Real* ydot) const;  // force_courant sqrt(h / |dv/dt|) of one slot
+  // C h / v_sig of one slot (+inf without a signal speed; NaN, with error_, for a non-finite one)
+  Real courant_step(std::size_t slot, const Real* v);
 
   // The per-slot array `slots` (comps per particle) in particle order, cached per RHS.
   struct ParticleOrderCache {

@@ -1,0 +1,120 @@
+#include "sphark/scenes/cloud_collapse/cloud_collapse_scene.hpp"
+
+#include <algorithm>
+
+#include "collapse_run.hpp"
+#include "sphark/run/restart.hpp"
+
+namespace sphark {
+
+std::string CloudCollapseScene::description() const {
+  return "magnetised molecular cloud core collapse (seed 000 IV-C, Figs. 4-6): 1 M_sun, Omega, B for mass-to-flux 5, "
+         "barotropic EOS, self-gravity, a sink; --t-end, --output-every, --diagnostics-every and --checkpoint-every "
+         "in units of the free-fall time t_ff";
+}
+
+void CloudCollapseScene::set_defaults(CoreOptions& core) {
+  core.out = "out/cloud_collapse";
+  core.t_end = 1.1;           // t_ff
+  core.output_every = 0.05;   // t_ff
+  core.stepper = "leapfrog";  // dt = min(Courant, force criterion): one RHS per step
+  core.rtol = 1e-4;
+  core.atol = 1e-8;
+}
+
+void CloudCollapseScene::add_options(OptionParser& p) {
+  std::vector<std::string> variants = cloud_collapse_variants();
+  variants.push_back("both");
+  p.add("--variant", &variant_, "div B control (both: none, then cleaning)", OneOf{variants});
+  p.add("--particles", &particles_, "particles in the sphere requested (the ambient adds ~0.476 x)", Range{100, 1e8});
+  p.add("--mass", &params_.mass_msun, "sphere mass [M_sun]", Positive{});
+  p.add("--radius", &params_.radius_cm, "sphere radius [cm]", Positive{});
+  p.add("--sound-speed", &params_.sound_speed_cm_s, "isothermal sound speed of the sphere [cm/s]", Positive{});
+  p.add("--omega", &params_.omega_rad_s, "solid-body rotation rate about z [rad/s]", NonNegative{});
+  p.add("--mass-to-flux", &params_.mass_to_flux, "mass-to-flux ratio in units of the critical", Positive{});
+  p.add("--contrast", &params_.density_contrast, "sphere / ambient density", Range{1, 1e4});
+  p.add("--rho-sink", &params_.rho_sink_g_cm3, "sink creation density [g/cm^3]", Positive{});
+  p.add("--r-acc", &params_.accretion_radius_cm, "sink accretion radius [cm]", Positive{});
+  p.add("--alpha", &params_.alpha_visc, "artificial viscosity", NonNegative{});
+  p.add("--alpha-b", &params_.alpha_b, "artificial resistivity of cleaning+resistivity", NonNegative{});
+  p.add("--sigma", &params_.sigma, "cleaning damping, 1/tau = sigma c_h / h", NonNegative{});
+  p.add("--overclean", &params_.overclean, "c_h = overclean x fast speed", Range{1, 100});
+  p.add_flag("--global-ch", &global_ch_, "one global c_h (the largest fast speed) instead of each particle's");
+  p.add_flag("--no-tensile-correction", &no_tensile_correction_, "leave out the correction (9) of the Maxwell stress");
+  p.add("--courant", &params_.courant, "Courant number of dt = C h / v_sig", Range{0.01, 1});
+  p.add("--gravity", &gravity_, "gravity solver", OneOf{{"tree", "direct"}});
+  p.add("--theta", &params_.theta, "tree opening angle", Range{0.05, 0.95});
+  p.add("--diagnostics-every", &diagnostics_every_, "time between diagnostics rows [t_ff]", Positive{});
+}
+
+void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core, const RunControlOptions&, bool) {
+  limit_to_t_end(p, "--diagnostics-every", diagnostics_every_, core.t_end);  // both in t_ff
+  params_.particles = static_cast<std::size_t>(particles_);
+  params_.gravity = parse_gravity_solver(gravity_);
+  params_.local_ch = !global_ch_;
+  params_.tensile_correction = !no_tensile_correction_;
+  try {
+    free_fall_time_ = cloud_numbers(params_).free_fall_time;
+  } catch (const std::invalid_argument& e) {
+    p.fail("--mass", e.what());
+  }
+}
+
+Real CloudCollapseScene::time_unit() const { return free_fall_time_; }
+
+std::vector<std::string> CloudCollapseScene::run_names() const {
+  if (variant_ == "both") return {"none", "cleaning"};
+  return {variant_};
+}
+
+void CloudCollapseScene::check_restart_run(const OptionParser& p, const std::string& run) const {
+  if (variant_ != "both" && variant_ != run) p.fail("--variant", variant_ + " contradicts the checkpoint (variant " + run + ")");
+}
+
+std::filesystem::path CloudCollapseScene::subdirectory(const std::string& run) const {
+  return run == "cleaning+resistivity" ? "cleaning_resistivity" : run;
+}
+
+std::string CloudCollapseScene::scene_text(const std::string& run) const {
+  std::string text;
+  append_key_value(text, "variant", run);
+  append_key_value(text, "particles", static_cast<Real>(params_.particles));
+  append_key_value(text, "mass", params_.mass_msun);
+  append_key_value(text, "radius", params_.radius_cm);
+  append_key_value(text, "sound_speed", params_.sound_speed_cm_s);
+  append_key_value(text, "omega", params_.omega_rad_s);
+  append_key_value(text, "mass_to_flux", params_.mass_to_flux);
+  append_key_value(text, "contrast", params_.density_contrast);
+  append_key_value(text, "rho_sink", params_.rho_sink_g_cm3);
+  append_key_value(text, "r_acc", params_.accretion_radius_cm);
+  append_key_value(text, "alpha", params_.alpha_visc);
+  append_key_value(text, "alpha_b", params_.alpha_b);
+  append_key_value(text, "sigma", params_.sigma);
+  append_key_value(text, "overclean", params_.overclean);
+  append_key_value(text, "local_ch", params_.local_ch ? 1.0 : 0.0);
+  append_key_value(text, "tensile_correction", params_.tensile_correction ? 1.0 : 0.0);
+  append_key_value(text, "courant", params_.courant);
+  append_key_value(text, "gravity", gravity_);
+  append_key_value(text, "theta", params_.theta);
+  return text;
+}
+
+std::unique_ptr<SceneRun> CloudCollapseScene::make_run(const std::string& run, const CoreOptions&) {
+  CloudCollapseParams p = params_;
+  p.variant = run;
+  return std::make_unique<CollapseRun>(p, diagnostics_every_ * free_fall_time_);
+}
+
+void CloudCollapseScene::finished(const std::string& run, SceneRun& r, const TimeLoopResult& result) {
+  auto& collapse = static_cast<CollapseRun&>(r);
+  collapse.write_final_products();
+  summaries_.emplace_back(run, collapse_summary(run, collapse, result));
+}
+
+std::vector<Scene::ParaViewStateFile> CloudCollapseScene::paraview_states(const std::vector<std::string>& runs) const {
+  std::vector<ParaViewStateFile> states;
+  for (const std::string& r : runs) states.push_back({subdirectory(r) / "view.pvsm", {{"collapse.pvd", "density"}}});
+  return states;
+}
+
+}  // namespace sphark

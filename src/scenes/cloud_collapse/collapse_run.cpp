@@ -1,0 +1,178 @@
+#include "collapse_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include "sphark/diagnostics/column_density.hpp"
+#include "sphark/diagnostics/step_levels.hpp"
+#include "sphark/io/atomic_file.hpp"
+
+namespace sphark {
+
+namespace {
+constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
+
+Real minimum(const std::vector<Real>& v) {
+  Real m = std::numeric_limits<Real>::infinity();
+  for (Real x : v) m = std::min(m, x);
+  return m;
+}
+
+// Angular momentum about z of gas and sinks (orbital) plus the sinks' spins.
+Real angular_momentum_z(const SpmhdScheme<3>& s, const Real* y) {
+  const StateLayout& L = s.layout();
+  const auto x = vector_field<3>(y, L, Field::Position);
+  const auto v = vector_field<3>(y, L, Field::Velocity);
+  Real lz = 0;
+  for (std::size_t a = 0; a < s.particles(); ++a) lz += s.masses()[a] * (x(0, a) * v(1, a) - x(1, a) * v(0, a));
+  const std::size_t ns = s.sinks();
+  if (ns == 0) return lz;
+  const auto xs = vector_field<3>(y, L, Field::Position, Species::Sink);
+  const auto vs = vector_field<3>(y, L, Field::Velocity, Species::Sink);
+  const auto spin = vector_field<3>(y, L, Field::Spin, Species::Sink);
+  const Real* ms = y + L.offset(Species::Sink, Field::Mass);
+  for (std::size_t k = 0; k < ns; ++k) lz += ms[k] * (xs(0, k) * vs(1, k) - xs(1, k) * vs(0, k)) + spin(2, k);
+  return lz;
+}
+}  // namespace
+
+CollapseRun::CollapseRun(const CloudCollapseParams& p, Real diagnostics_every)
+    : p_(p), cloud_(p), every_(diagnostics_every) {}
+
+std::vector<std::string> CollapseRun::columns() const {
+  return {"t", "t_over_tff", "max_density", "mean_h_divB_over_B", "max_h_divB_over_B", "momentum_magnitude",
+          "kinetic_energy", "magnetic_energy", "thermal_energy", "psi_energy", "potential_energy", "total_energy",
+          "n_sinks", "sink_mass", "sink_x", "sink_y", "sink_z", "angular_momentum_z", "momentum_rate",
+          "tensile_momentum_rate", "other_momentum_rate", "dt_courant", "dt_force", "gas_particles", "steps",
+          "rhs_evals"};
+}
+
+std::vector<Real> CollapseRun::diagnostics(Real t, const Real* y, const StepperStats& st) {
+  SpmhdScheme<3>& s = cloud_.scheme;
+  const SpmhdDiagnostics d = spmhd_diagnostics(s, t, y);
+  const SpmhdScheme<3>::MomentumBudget budget = s.momentum_budget(t, y);
+  std::vector<Real> courant, force;
+  const bool steps_ok = s.stable_steps(t, y, nullptr, courant, force) == 0;
+  const Real rho_max = s.rho().empty() ? kNaN : *std::max_element(s.rho().begin(), s.rho().end());
+  const StateLayout& L = s.layout();
+  const std::size_t ns = s.sinks();
+  const Real* xs = ns ? y + L.offset(Species::Sink, Field::Position) : nullptr;
+  const Vec<3> p(d.momentum[0], d.momentum[1], d.momentum[2]);
+  return {t, t / cloud_.numbers.free_fall_time, rho_max * cloud_.units.density_g_cm3(), d.mean_h_divb_over_b,
+          d.max_h_divb_over_b, p.norm(), d.kinetic_energy, d.magnetic_energy, d.thermal_energy, d.psi_energy,
+          d.potential_energy, d.total_energy, static_cast<Real>(ns), ns ? y[L.offset(Species::Sink, Field::Mass)] : 0,
+          ns ? xs[0] : kNaN, ns ? xs[1] : kNaN, ns ? xs[2] : kNaN, angular_momentum_z(s, y), budget.total.norm(),
+          budget.tensile.norm(), (budget.total - budget.tensile).norm(), steps_ok ? minimum(courant) : kNaN,
+          steps_ok ? minimum(force) : kNaN, static_cast<Real>(s.particles()), static_cast<Real>(st.steps),
+          static_cast<Real>(st.rhs_evals)};
+}
+
+ParticleFrame CollapseRun::frame(Real t, const Real* y) {
+  last_frame_y_.assign(y, y + cloud_.scheme.size());
+  last_frame_t_ = t;
+  return frame_.build(cloud_.scheme, t, y, &cloud_.box);
+}
+
+std::vector<std::pair<std::string, Real*>> CollapseRun::saved_numbers() {
+  return {{"sink_creations", &creations_}, {"accreted_particles", &accreted_}, {"first_sink_time", &first_creation_t_}};
+}
+
+void CollapseRun::settings(TimeLoopSettings& s) {
+  s.sample_every = every_;
+  s.frames_basename = "collapse";
+  s.progress_interval = 10;
+  dir_ = s.frames_dir;
+}
+
+std::optional<TimeLoopHooks::Resize> CollapseRun::after_step(Real t, const Real* y) {
+  log_.creations = static_cast<long>(creations_);
+  log_.accreted_particles = static_cast<long>(accreted_);
+  log_.first_creation_time = first_creation_t_;
+  const long created_before = log_.creations;
+  std::optional<TimeLoopHooks::Resize> r = sink_events(cloud_.scheme, t, y, cloud_.sinks, log_);
+  creations_ = static_cast<Real>(log_.creations);
+  accreted_ = static_cast<Real>(log_.accreted_particles);
+  first_creation_t_ = log_.first_creation_time;
+  if (r && log_.creations > created_before) {
+    std::fprintf(stderr, "cloud_collapse: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",
+                 log_.creations, t / cloud_.numbers.free_fall_time, cloud_.scheme.particles());
+    write_step_levels("sink_formation", t, r->y.data());
+  }
+  return r;
+}
+
+StateLayout CollapseRun::restart_layout(const Checkpoint& c) {
+  std::size_t gas = 0, sinks = 0;
+  for (const CheckpointSpecies& s : c.species) (s.name == "sink" ? sinks : gas) = s.particles;
+  std::vector<std::size_t> kept(gas);
+  std::iota(kept.begin(), kept.end(), std::size_t{0});  // equal masses: which particles does not matter
+  cloud_.scheme.change_particles(kept, sinks);
+  std::ifstream in(dir_ / "step_levels.csv");
+  std::ostringstream text;
+  text << in.rdbuf();
+  levels_csv_ = text.str();
+  return cloud_.scheme.layout();
+}
+
+// step_levels.csv: per event, the gas particles' own stable steps min(Courant, force) on
+// power-of-two levels above the smallest (diagnostics/step_levels.hpp).
+void CollapseRun::write_step_levels(const std::string& event, Real t, const Real* y) {
+  std::vector<Real> courant, force;
+  if (cloud_.scheme.stable_steps(t, y, nullptr, courant, force) != 0) return;
+  std::vector<Real> dt(courant.size());
+  for (std::size_t a = 0; a < dt.size(); ++a) dt[a] = std::min(courant[a], force[a]);
+  const StepLevels levels = step_levels(dt);
+  if (levels_csv_.empty()) levels_csv_ = "event,t_over_tff,dt_min,level,count,fraction,block_speedup\n";
+  const Real n = static_cast<Real>(dt.size());
+  char line[256];
+  for (std::size_t k = 0; k < levels.count.size(); ++k) {
+    std::snprintf(line, sizeof line, "%s,%.6g,%.6e,%zu,%zu,%.6e,%.4f\n", event.c_str(),
+                  t / cloud_.numbers.free_fall_time, levels.dt_min, k, levels.count[k],
+                  static_cast<Real>(levels.count[k]) / n, levels.speedup());
+    levels_csv_ += line;
+  }
+  write_file_atomically(dir_ / "step_levels.csv", levels_csv_);
+}
+
+void CollapseRun::write_final_products() {
+  if (last_frame_y_.empty() || dir_.empty()) return;
+  write_step_levels("end", last_frame_t_, last_frame_y_.data());
+  write_maps(last_frame_y_.data());
+}
+
+// Column density along y (seed 000, Fig. 4), g/cm^2 over code lengths: the whole cloud (2.5 R
+// wide) and a zoom 0.3 R wide on the first sink (or the density maximum without one).
+void CollapseRun::write_maps(const Real* y) {
+  SpmhdScheme<3>& s = cloud_.scheme;
+  if (s.evaluate(last_frame_t_, y) != 0) return;
+  const std::size_t n = s.particles();
+  std::vector<Real> x(y + s.layout().offset(Field::Position), y + s.layout().offset(Field::Position) + 3 * n);
+  cloud_.box.wrap_all(x.data(), n, x.data());
+  Vec<3> centre = Vec<3>::Zero();
+  if (s.sinks() > 0) {
+    centre = Eigen::Map<const Vec<3>>(y + s.layout().offset(Species::Sink, Field::Position));
+  } else {
+    const auto densest = std::max_element(s.rho().begin(), s.rho().end()) - s.rho().begin();
+    centre = Eigen::Map<const Vec<3>>(x.data() + 3 * densest);
+  }
+  const Real sigma_unit = cloud_.units.mass_g / (cloud_.units.length_cm * cloud_.units.length_cm);
+  const Real R = cloud_.numbers.radius;
+  struct View {
+    const char* file;
+    Real cx, cz, half;
+  };
+  for (const View& v : {View{"column_density_y.csv", 0, 0, 1.25 * R},
+                        View{"column_density_y_zoom.csv", centre[0], centre[2], 0.15 * R}}) {
+    ColumnDensityMap map = column_density(x.data(), s.masses().data(), s.h().data(), n, 1, v.cx - v.half,
+                                          v.cx + v.half, v.cz - v.half, v.cz + v.half, 400, 400);
+    for (Real& value : map.sigma) value *= sigma_unit;
+    write_column_density((dir_ / v.file).string(), map);
+  }
+}
+
+}  // namespace sphark

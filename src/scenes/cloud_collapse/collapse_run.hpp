@@ -1,0 +1,60 @@
+#pragma once
+// One run of the cloud collapse (a variant) for the run driver: the system, its diagnostics row,
+// its frames (gas and sinks), the sink events between steps, the step-level record, and the
+// column-density maps of its last frame. Private to src/scenes/cloud_collapse.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sphark/diagnostics/spmhd_diagnostics.hpp"
+#include "sphark/run/scene.hpp"
+#include "sphark/scenes/cloud_collapse/cloud_collapse.hpp"
+#include "sphark/sinks/sink_events.hpp"
+
+namespace sphark {
+
+class CollapseRun final : public SceneRun {
+ public:
+  CollapseRun(const CloudCollapseParams& p, Real diagnostics_every);
+  OdeSystem& system() override { return cloud_.scheme; }
+  const StateLayout& layout() const override { return cloud_.scheme.layout(); }
+  std::vector<Real> initial_state() override { return cloud_.y0; }
+  std::vector<std::string> columns() const override;
+  std::vector<Real> diagnostics(Real t, const Real* y, const StepperStats& st) override;
+  ParticleFrame frame(Real t, const Real* y) override;
+  std::vector<std::pair<std::string, Real*>> saved_numbers() override;
+  bool changes_particles() const override { return true; }
+  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y) override;
+  StateLayout restart_layout(const Checkpoint& c) override;
+  void settings(TimeLoopSettings& s) override;
+
+  // After the run: the step levels and the column-density maps of the last frame (its state).
+  void write_final_products();
+  const CloudCollapse& cloud() const { return cloud_; }
+  const SinkEventLog& sink_log() const { return log_; }
+  // The first sink against the gas denser than rho_dense (g/cm^3) at the last frame: its distance
+  // from that gas's centre of mass and its speed relative to it (code units); NaN without a sink.
+  std::pair<Real, Real> sink_offset(Real rho_dense_g_cm3);
+
+ private:
+  void write_step_levels(const std::string& event, Real t, const Real* y);
+  void write_maps(const Real* y);
+
+  CloudCollapseParams p_;
+  CloudCollapse cloud_;
+  Real every_;
+  std::filesystem::path dir_;
+  SpmhdFrame frame_;
+  SinkEventLog log_;
+  // the log's counts as checkpointed numbers (the log is reloaded from them before every event)
+  Real creations_ = 0, accreted_ = 0, first_creation_t_ = -1;
+  std::vector<Real> last_frame_y_;  // the state of the last frame written
+  Real last_frame_t_ = 0;
+  std::string levels_csv_;  // step_levels.csv so far
+};
+
+// The run's summary_<variant>.csv text (header + one line; collapse_report.cpp).
+std::string collapse_summary(const std::string& variant, CollapseRun& run, const TimeLoopResult& result);
+
+}  // namespace sphark

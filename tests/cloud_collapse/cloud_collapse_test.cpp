@@ -1,0 +1,255 @@
+// The magnetised cloud collapse's set-up (seed 000 §IV-C, issue #16): the physical numbers from
+// their cgs definitions, the particles (mass, rotation, field, pressure balance of sphere and
+// ambient), the SPMHD right-hand side's momentum budget with the tensile correction (eq. (9)),
+// and the column density maps and step levels the example writes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "sphark/diagnostics/column_density.hpp"
+#include "sphark/diagnostics/step_levels.hpp"
+#include "sphark/scenes/cloud_collapse/cloud_collapse.hpp"
+
+namespace sphark {
+namespace {
+
+constexpr Real kPi = 3.14159265358979323846;
+constexpr Real kG = 6.67430e-8;  // cgs, as core/units.hpp
+
+CloudCollapseParams small(std::size_t particles, const std::string& variant = "cleaning") {
+  CloudCollapseParams p;
+  p.particles = particles;
+  p.variant = variant;
+  return p;
+}
+
+TEST(CloudNumbers, MassToFluxAndBetaFromTheirCgsDefinitions) {
+  const CloudCollapseParams p;
+  const CodeUnits u = CodeUnits::collapse();
+  const CloudNumbers c = cloud_numbers(p);
+  const Real mass_g = p.mass_msun * u.mass_g, R = p.radius_cm;
+  // (M / Phi)_crit = 0.53 / (3 pi) sqrt(5 / G); mu = M / (pi R^2 B0) / crit
+  EXPECT_NEAR(critical_mass_to_flux_cgs(), 0.53 / (3 * kPi) * std::sqrt(5 / kG), 1e-15 * critical_mass_to_flux_cgs());
+  const Real B0_gauss = c.field * u.magnetic_field_gauss();
+  EXPECT_NEAR(mass_g / (kPi * R * R * B0_gauss) / critical_mass_to_flux_cgs(), 5.0, 1e-12);
+  EXPECT_NEAR(B0_gauss, 1.626e-4, 0.001e-4);
+  // beta = P / (B^2 / 8 pi) in cgs = 2 P / B^2 in code units (B^2 / 2 the magnetic pressure)
+  const Real rho_cgs = mass_g / (4.0 / 3.0 * kPi * R * R * R);
+  const Real beta_cgs = rho_cgs * p.sound_speed_cm_s * p.sound_speed_cm_s / (B0_gauss * B0_gauss / (8 * kPi));
+  EXPECT_NEAR(c.plasma_beta(), beta_cgs, 1e-10 * beta_cgs);
+  EXPECT_NEAR(rho_cgs, 7.42e-18, 0.01e-18);
+  // the free-fall time sqrt(3 pi / (32 G rho)) in seconds
+  EXPECT_NEAR(c.free_fall_time * u.time_s(), std::sqrt(3 * kPi / (32 * kG * rho_cgs)), 1e-10 * u.time_s() * c.free_fall_time);
+  EXPECT_NEAR(c.mass, 1.0, 1e-15);
+  EXPECT_NEAR(c.sound_speed * u.velocity_cm_s(), p.sound_speed_cm_s, 1e-9 * p.sound_speed_cm_s);
+  EXPECT_NEAR(c.omega / u.time_s(), p.omega_rad_s, 1e-12 * p.omega_rad_s);
+}
+
+TEST(CloudNumbers, RejectsNonPhysicalInputs) {
+  for (auto bad : {+[](CloudCollapseParams& p) { p.mass_msun = 0; }, +[](CloudCollapseParams& p) { p.radius_cm = -1; },
+                   +[](CloudCollapseParams& p) { p.sound_speed_cm_s = 0; },
+                   +[](CloudCollapseParams& p) { p.mass_to_flux = 0; },
+                   +[](CloudCollapseParams& p) { p.density_contrast = 0.5; },
+                   +[](CloudCollapseParams& p) { p.rho_sink_g_cm3 = 0; }}) {
+    CloudCollapseParams p;
+    bad(p);
+    EXPECT_THROW(cloud_numbers(p), std::invalid_argument);
+  }
+}
+
+TEST(CloudSetUp, MassRotationAndFieldOfTheParticles) {
+  const CloudCollapse cloud(small(2000));
+  const StateLayout& L = cloud.scheme.layout();
+  const std::size_t n = cloud.scheme.particles(), ns = cloud.sphere_particles();
+  ASSERT_GT(n, ns);
+  Real sphere_mass = 0, Lz = 0, I = 0;
+  const Real* x = cloud.y0.data() + L.offset(Field::Position);
+  const Real* v = cloud.y0.data() + L.offset(Field::Velocity);
+  const Real* B = cloud.y0.data() + L.offset(Field::MagneticField);
+  for (std::size_t a = 0; a < n; ++a) {
+    const Real m = cloud.scheme.masses()[a];
+    EXPECT_EQ(m, cloud.scheme.masses()[0]);  // equal masses everywhere
+    EXPECT_EQ(B[3 * a], 0);
+    EXPECT_EQ(B[3 * a + 1], 0);
+    EXPECT_EQ(B[3 * a + 2], cloud.numbers.field);
+    const Real r = std::sqrt(x[3 * a] * x[3 * a] + x[3 * a + 1] * x[3 * a + 1] + x[3 * a + 2] * x[3 * a + 2]);
+    if (a < ns) {
+      EXPECT_LT(r, cloud.numbers.radius);
+      sphere_mass += m;
+      Lz += m * (x[3 * a] * v[3 * a + 1] - x[3 * a + 1] * v[3 * a]);
+      I += m * (x[3 * a] * x[3 * a] + x[3 * a + 1] * x[3 * a + 1]);
+    } else {
+      EXPECT_GE(r, cloud.numbers.radius);
+      EXPECT_EQ(v[3 * a] * v[3 * a] + v[3 * a + 1] * v[3 * a + 1] + v[3 * a + 2] * v[3 * a + 2], 0);
+    }
+  }
+  EXPECT_NEAR(sphere_mass, cloud.numbers.mass, 1e-13);
+  EXPECT_NEAR(Lz, cloud.numbers.omega * I, 1e-14 * std::abs(Lz));  // solid-body rotation
+  // and the lattice's moment of inertia is the uniform sphere's 2/5 M R^2 within its surface error
+  const Real I_sphere = 0.4 * cloud.numbers.mass * cloud.numbers.radius * cloud.numbers.radius;
+  EXPECT_NEAR(I / I_sphere, 1.0, 0.03);
+  // ambient: the lattice contrast is the requested 30 exactly
+  EXPECT_NEAR(cloud.placement.sphere_lattice_density / cloud.placement.ambient_lattice_density, 30.0, 1e-12);
+}
+
+Real median(std::vector<Real> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// The barotropic EOS gives the ambient gas c_s sqrt(30): its pressure equals the sphere's, and
+// the SPH densities away from the surface are the lattices' (so the sphere starts in balance).
+TEST(CloudSetUp, SphereAndAmbientInPressureBalance) {
+  CloudCollapse cloud(small(4000));
+  ASSERT_EQ(cloud.scheme.evaluate(0, cloud.y0.data()), 0);
+  const StateLayout& L = cloud.scheme.layout();
+  const Real* x = cloud.y0.data() + L.offset(Field::Position);
+  const Real R = cloud.numbers.radius, half = 0.5 * cloud.placement.side;
+  std::vector<Real> rho_in, rho_out, P_in, P_out;
+  for (std::size_t a = 0; a < cloud.scheme.particles(); ++a) {
+    const Real r = std::sqrt(x[3 * a] * x[3 * a] + x[3 * a + 1] * x[3 * a + 1] + x[3 * a + 2] * x[3 * a + 2]);
+    const Real edge = std::max({std::abs(x[3 * a]), std::abs(x[3 * a + 1]), std::abs(x[3 * a + 2])});
+    if (r < 0.6 * R) {
+      rho_in.push_back(cloud.scheme.rho()[a]);
+      P_in.push_back(cloud.scheme.pressure()[a]);
+    } else if (r > 1.6 * R && edge < half) {
+      rho_out.push_back(cloud.scheme.rho()[a]);
+      P_out.push_back(cloud.scheme.pressure()[a]);
+    }
+  }
+  ASSERT_GT(rho_in.size(), 100u);
+  ASSERT_GT(rho_out.size(), 100u);
+  EXPECT_NEAR(median(rho_in) / cloud.placement.sphere_lattice_density, 1.0, 0.01);
+  EXPECT_NEAR(median(rho_out) / cloud.placement.ambient_lattice_density, 1.0, 0.01);
+  EXPECT_NEAR(median(P_out) / median(P_in), 1.0, 0.02);
+  // the EOS itself balances the two lattice densities exactly (P = c_s^2 rho inside, 30 c_s^2 rho outside)
+  const BarotropicEos* eos = cloud.scheme.barotropic_eos();
+  ASSERT_NE(eos, nullptr);
+  EXPECT_NEAR(eos->pressure(cloud.placement.ambient_lattice_density) / eos->pressure(cloud.placement.sphere_lattice_density),
+              1.0, 1e-12);
+}
+
+// Momentum of the RHS: every pair term is antisymmetric (and the gravity with the direct sum),
+// except the tensile correction -B_a (div B)_a of eq. (9): the total rate of change of momentum is
+// what momentum_budget reports as the tensile part, which an independent sum of eq. (9) confirms.
+Vec<3> momentum_rate(CloudCollapse& cloud, std::vector<Real>& ydot, Real& scale) {
+  ydot.assign(cloud.y0.size(), 0);
+  EXPECT_EQ(cloud.scheme.rhs(0, cloud.y0.data(), ydot.data()), 0);
+  const StateLayout& L = cloud.scheme.layout();
+  Vec<3> p = Vec<3>::Zero();
+  scale = 0;
+  for (std::size_t a = 0; a < cloud.scheme.particles(); ++a) {
+    const Real m = cloud.scheme.masses()[a];
+    for (int k = 0; k < 3; ++k) {
+      p[k] += m * ydot[L.offset(Field::Velocity) + 3 * a + k];
+      scale += m * std::abs(ydot[L.offset(Field::Velocity) + 3 * a + k]);
+    }
+  }
+  return p;
+}
+
+CloudCollapse perturbed(CloudCollapseParams p) {
+  CloudCollapse cloud(p);
+  // a tangled field (div B != 0) so that the tensile correction has something to do
+  const StateLayout& L = cloud.scheme.layout();
+  const Real* x = cloud.y0.data() + L.offset(Field::Position);
+  Real* B = cloud.y0.data() + L.offset(Field::MagneticField);
+  const Real k = 2 * kPi / cloud.numbers.radius, B0 = cloud.numbers.field;
+  for (std::size_t a = 0; a < cloud.scheme.particles(); ++a) {
+    B[3 * a] = 0.3 * B0 * std::sin(k * x[3 * a]);
+    B[3 * a + 1] = 0.2 * B0 * std::cos(k * x[3 * a + 2]);
+    B[3 * a + 2] = B0 * (1 + 0.3 * std::sin(k * x[3 * a + 2]));
+  }
+  return cloud;
+}
+
+TEST(CloudMomentum, ConservedToRoundOffWithoutTheTensileCorrection) {
+  CloudCollapseParams p = small(1500);
+  p.tensile_correction = false;
+  p.gravity = GravitySolver::Direct;
+  CloudCollapse cloud = perturbed(p);
+  std::vector<Real> ydot;
+  Real scale = 0;
+  const Vec<3> rate = momentum_rate(cloud, ydot, scale);
+  EXPECT_LT(rate.norm(), 1e-13 * scale);
+  const auto budget = cloud.scheme.momentum_budget(0, cloud.y0.data());
+  EXPECT_EQ(budget.tensile.norm(), 0);
+  EXPECT_LT((budget.total - rate).norm(), 1e-13 * scale);
+}
+
+TEST(CloudMomentum, TheTensileCorrectionIsAllThatChangesIt) {
+  CloudCollapseParams p = small(1500);
+  p.gravity = GravitySolver::Direct;
+  CloudCollapse cloud = perturbed(p);
+  std::vector<Real> ydot;
+  Real scale = 0;
+  const Vec<3> rate = momentum_rate(cloud, ydot, scale);
+  const auto budget = cloud.scheme.momentum_budget(0, cloud.y0.data());
+  ASSERT_GT(budget.tensile.norm(), 1e-6 * scale);  // the correction does something here
+  EXPECT_LT((budget.total - rate).norm(), 1e-13 * scale);
+  EXPECT_LT((budget.total - budget.tensile).norm(), 1e-12 * scale);
+  // eq. (9): the correction's force on a is -B_a (div B)_a / rho_a (per unit mass): its momentum
+  // rate is -sum_a m_a B_a (div B)_a / rho_a, from the scheme's own div B (eq. (20)) and rho.
+  const std::vector<Real>& B = cloud.scheme.magnetic_field();
+  Vec<3> independent = Vec<3>::Zero();
+  for (std::size_t a = 0; a < cloud.scheme.particles(); ++a)
+    for (int k = 0; k < 3; ++k)
+      independent[k] -= cloud.scheme.masses()[a] * B[3 * a + k] * cloud.scheme.div_b()[a] / cloud.scheme.rho()[a];
+  EXPECT_LT((independent - budget.tensile).norm(), 1e-9 * independent.norm());
+}
+
+TEST(ColumnDensity, CubicColumnKernelAtTheCentre) {
+  // F(0) = int W~(|s|) ds = (2 / pi) int_0^2 f = (2 / pi) (3 / 4)
+  EXPECT_NEAR(column_kernel<CubicSpline<3>>(0), 1.5 / kPi, 1e-12);
+  EXPECT_EQ(column_kernel<CubicSpline<3>>(2.0), 0);
+  // int F 2 pi q dq = 1
+  Real sum = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const Real q = (i + 0.5) * 2.0 / n;
+    sum += column_kernel<CubicSpline<3>>(q) * 2 * kPi * q * (2.0 / n);
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-6);
+}
+
+TEST(ColumnDensity, HoldsTheMassOfEveryParticleInsideTheMap) {
+  std::vector<Real> x, m, h;
+  for (int i = 0; i < 200; ++i) {  // a deterministic scatter inside [-0.5, 0.5]^3 with h from tiny to wide
+    const Real a = std::fmod(0.6180339887 * i, 1.0), b = std::fmod(0.7548776662 * i, 1.0), c = std::fmod(0.5698402910 * i, 1.0);
+    x.insert(x.end(), {a - 0.5, b - 0.5, c - 0.5});
+    m.push_back(1.0 + 0.01 * i);
+    h.push_back(1e-4 + 0.1 * std::fmod(0.31 * i, 1.0));
+  }
+  Real inside = 0;
+  for (std::size_t a = 0; a < m.size(); ++a)
+    if (std::abs(x[3 * a]) + 2 * h[a] < 1 && std::abs(x[3 * a + 2]) + 2 * h[a] < 1) inside += m[a];
+  const ColumnDensityMap map = column_density<CubicSpline<3>>(x.data(), m.data(), h.data(), m.size(), 1, -1, 1, -1, 1, 64, 48);
+  Real total = 0;
+  for (Real s : map.sigma) total += s * map.pixel_area();
+  Real all = 0;
+  for (Real v : m) all += v;
+  EXPECT_GE(total, inside * (1 - 1e-12));
+  EXPECT_LE(total, all * (1 + 1e-12));
+  // all particles here lie within the map: every one is held
+  EXPECT_NEAR(total, all, 1e-12 * all);
+  EXPECT_THROW(column_density<CubicSpline<3>>(x.data(), m.data(), h.data(), m.size(), 3, -1, 1, -1, 1, 8, 8),
+               std::invalid_argument);
+}
+
+TEST(StepLevels, CountsPerPowerOfTwoLevelAndTheBlockSpeedup) {
+  const Real inf = HUGE_VAL;
+  const StepLevels s = step_levels({1.0, 1.5, 2.0, 3.9, 4.0, 8.5, inf, std::nan("")});
+  EXPECT_EQ(s.dt_min, 1.0);
+  ASSERT_EQ(s.count.size(), 4u);
+  EXPECT_EQ(s.count[0], 2u);  // [1, 2)
+  EXPECT_EQ(s.count[1], 2u);  // [2, 4)
+  EXPECT_EQ(s.count[2], 1u);  // [4, 8)
+  EXPECT_EQ(s.count[3], 1u);  // [8, 16)
+  EXPECT_EQ(s.unlimited, 2u);
+  EXPECT_DOUBLE_EQ(s.speedup(), 6.0 / (2 + 2 * 0.5 + 0.25 + 0.125));
+}
+
+}  // namespace
+}  // namespace sphark
