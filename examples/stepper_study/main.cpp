@@ -2,6 +2,7 @@
 // least work, and where does each one fail? Work-precision matrix + stability limits of the
 // time steppers on one scene. See README.md in this folder.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -12,7 +13,9 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/visualise.hpp"
+#include "sphark/run/cost_estimate.hpp"
 #include "sphark/run/signals.hpp"
+#include "sphark/run/time_loop.hpp"  // kStepFloorFraction
 #include "study.hpp"
 
 using namespace sphark;
@@ -43,6 +46,47 @@ std::vector<std::string> method_list(const OptionParser& p, const std::string& o
     out.push_back(m);
   }
   return out;
+}
+
+// The study runs its scene many times over: a scene that would not fit in memory is refused
+// before it is built (run/cost_estimate.hpp). Every study scene is 2D on a unit domain, so its
+// particles scale as spacing^-2: a probe at the spacing of ~kProbeParticles particles measures
+// them and the bytes per particle of its reference run.
+void check_study_size(const OptionParser& p, const std::string& scene_name, const StudySceneOptions& so,
+                      const StudySettings& s) {
+  const Real probe_spacing = std::sqrt(kPi / kProbeParticles);
+  if (!(so.spacing > 0) || so.spacing >= probe_spacing) return;
+  StudySceneOptions po = so;
+  po.spacing = probe_spacing;
+  const std::unique_ptr<StudyScene> probe_scene = make_study_scene(scene_name, po);
+  const ProbeMeasurement m = measure_probe([&] {
+    ProbeSubject subject;
+    std::shared_ptr<StudyProblem> problem = probe_scene->build();
+    subject.system = &problem->system();
+    subject.y0 = problem->y0();
+    subject.stepper = study_stepper_options(s.reference, *problem, *probe_scene, s.limits);
+    subject.particles = problem->system().state_layout() ? problem->system().state_layout()->particles() : 0;
+    subject.owner = problem;
+    return subject;
+  }, probe_scene->t_end());
+  const CostEstimate e = estimate_memory(m.particles * (probe_spacing / so.spacing) * (probe_spacing / so.spacing), m);
+  if (!e.fits()) p.fail("--spacing", memory_refusal(e));
+}
+
+// Fixed steps below the step floor (kStepFloorFraction x t_end) would never end: refused.
+void check_fixed_steps(const OptionParser& p, const StudyScene& scene, const StudySettings& s) {
+  const Real floor = kStepFloorFraction * scene.t_end();
+  const auto check = [&](const char* option, const std::vector<Real>& cfls) {
+    for (Real cfl : cfls)
+      if (!(cfl * scene.cfl_unit() >= floor)) {
+        char why[200];
+        std::snprintf(why, sizeof why, "CFL %.3g gives dt=%.3g, below the step floor %.3g (%.0e x t_end)", cfl,
+                      cfl * scene.cfl_unit(), floor, kStepFloorFraction);
+        p.fail(option, why);
+      }
+  };
+  if (!s.fixed_methods.empty()) check("--fixed-cfls", s.fixed_cfls);
+  if (!s.leapfrog_methods.empty()) check("--leapfrog-cfls", s.leapfrog_cfls);
 }
 
 }  // namespace
@@ -116,16 +160,18 @@ int main(int argc, char** argv) {
   if (out.empty()) out = std::filesystem::path("out/stepper_study") / scene_name;
   s.out = out;
 
+  threads = apply_thread_count(threads, p.program());
   std::unique_ptr<StudyScene> scene;
   try {
+    check_study_size(p, scene_name, so, s);
     scene = make_study_scene(scene_name, so);
   } catch (const std::exception& e) {
     exit_usage_error(p.program(), "--scene", e.what());
   }
-  apply_thread_count(threads);
+  check_fixed_steps(p, *scene, s);
   run_profile().enable(profile);
   prepare_output_dir(s.out, p.program());
-  install_stop_handlers();  // SIGINT/SIGTERM: finish the current case, keep the rows so far
+  install_stop_handlers();  // SIGINT/SIGTERM: stop the current case (no row), keep the rows so far
   const auto start = std::chrono::steady_clock::now();
   std::printf("stepper_study: %s; CFL unit h/(c+|v|) = %.4g; output %s\n", scene->description().c_str(), scene->cfl_unit(),
               s.out.c_str());

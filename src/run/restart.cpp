@@ -83,6 +83,22 @@ void check_run_options(const OptionParser& p, RunControlOptions& o, CoreOptions&
   // alone is a valid short run)
   limit_to_t_end(p, "--output-every", core.output_every, core.t_end);
   limit_to_t_end(p, "--checkpoint-every", o.checkpoint_every, core.t_end);
+  check_step_option(p, core);
+}
+
+void check_step_option(const OptionParser& p, const CoreOptions& core) {
+  if (!(core.dt > 0)) return;
+  const Real floor = kStepFloorFraction * core.t_end;
+  char why[256];
+  if (!(core.t_end + core.dt > core.t_end))
+    std::snprintf(why, sizeof why, "%.3g does not advance t at --t-end %.3g (t + dt == t); the step floor is %.3g (%.0e x --t-end)",
+                  core.dt, core.t_end, floor, kStepFloorFraction);
+  else if (core.dt < floor)
+    std::snprintf(why, sizeof why, "%.3g is below the step floor %.3g (%.0e x --t-end: a run of more than %.0e steps)",
+                  core.dt, floor, kStepFloorFraction, 1 / kStepFloorFraction);
+  else
+    return;
+  p.fail("--dt", why);
 }
 
 std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program) {
@@ -133,8 +149,8 @@ void check_restart_t_end(const OptionParser& p, const Checkpoint& c, Real t_end)
   p.fail("--t-end", why);
 }
 
-void start_run(const CoreOptions& core, std::string_view program) {
-  apply_thread_count(core.threads);
+void start_run(CoreOptions& core, std::string_view program) {
+  core.threads = apply_thread_count(core.threads, program);
   run_profile().enable(core.profile);
   prepare_output_dir(core.out, program);
   install_stop_handlers();

@@ -107,8 +107,11 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     const Real scale = std::isfinite(stable) && stable > 0 ? std::min(stable, s.sample_every) : s.sample_every;
     opts.min_dt = s.min_dt_fraction * scale;
   }
+  if (opts.step_floor <= 0) opts.step_floor = s.step_floor_fraction * t_end;
+  if (!opts.interrupt) opts.interrupt = [] { return stop_requested() != 0; };
   if (s.inject_nan_at > 0) opts.inject_nan_from = s.inject_nan_at;
   auto stepper = make_stepper(system, opts, t, y.data());
+  if (hooks.started) hooks.started();
   const auto stats = [&] { return base.total(stepper->stats()); };
 
   const auto save = [&](Real time) {
@@ -164,6 +167,12 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     }
     const Real t_out = std::min(t_end, sample * s.sample_every);
     const AdvanceStatus st = stepper->advance(t_out, y.data(), t);
+    if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
+      res.status = TimeLoopStatus::Stopped;
+      res.signal = stop_requested();
+      save(t);
+      break;
+    }
     if (st == AdvanceStatus::Failed) {  // y, t: the last good state
       res.status = TimeLoopStatus::Failed;
       res.failure = stepper->failure_reason();
