@@ -87,6 +87,15 @@ void check_fixed_steps(const OptionParser& p, const StudyScene& scene, const Stu
   };
   if (!s.fixed_methods.empty()) check("--fixed-cfls", s.fixed_cfls);
   if (!s.leapfrog_methods.empty()) check("--leapfrog-cfls", s.leapfrog_cfls);
+  // a stability trial takes horizon / dt whole steps, down to CFL min_cfl
+  const Real horizon = s.stability.horizon > 0 ? s.stability.horizon : scene.t_end();
+  const Real steps = horizon / (s.stability.min_cfl * scene.cfl_unit());
+  if (s.stability_run && !(steps <= 1 / kStepFloorFraction)) {
+    char why[200];
+    std::snprintf(why, sizeof why, "%.3g: a trial at CFL %.3g would take %.3g steps (at most %.0e)", horizon,
+                  s.stability.min_cfl, steps, 1 / kStepFloorFraction);
+    p.fail("--stability-horizon", why);
+  }
 }
 
 }  // namespace
@@ -114,7 +123,7 @@ int main(int argc, char** argv) {
   p.add("--out", &out, "output directory (default out/stepper_study/<scene>)", "DIR");
   p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles, disc 0.08 = 484, orszag_tang 1/16 = 16 x 18)", NonNegative{});
   p.add("--t-end", &so.t_end, "end time (0: scene default; drop 0.025, disc 10, orszag_tang 0.5)", NonNegative{});
-  p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default: drop 25, disc 20, orszag_tang 10)", NonNegative{});
+  p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default: drop 25, disc 20, orszag_tang 10)", Range{0, 10000});
   p.add("--what", &what, "what to run", OneOf{{"all", "matrix", "stability"}});
   p.add("--methods", &adaptive, "adaptive methods (ERK tables with an embedding, ark-imex), comma-separated; 'none'");
   p.add("--modes", &modes, "adaptive modes: capped (dt <= cap-cfl x CFL unit), uncapped, or both", OneOf{{"capped", "uncapped", "capped,uncapped"}});

@@ -61,9 +61,17 @@ StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, st
 }
 
 void limit_to_t_end(const OptionParser& p, std::string_view option, Real& value, Real t_end) {
-  if (value <= t_end) return;
-  if (p.was_given(option)) p.fail(option, "must not exceed --t-end");
-  value = t_end;
+  const Real least = t_end / kMaxOutputs;
+  if (value > t_end) {
+    if (p.was_given(option)) p.fail(option, "must not exceed --t-end");
+    value = t_end;
+  } else if (value > 0 && value < least) {
+    char why[160];
+    std::snprintf(why, sizeof why, "%.3g gives more than %.0e outputs up to --t-end %.3g (at least %.3g)", value,
+                  kMaxOutputs, t_end, least);
+    if (p.was_given(option)) p.fail(option, why);
+    value = least;
+  }
 }
 
 int apply_thread_count(int threads, std::string_view program) {

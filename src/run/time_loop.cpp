@@ -199,7 +199,11 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     record(t);
     if (hooks.finished && hooks.finished(t)) res.status = TimeLoopStatus::EndedEarly;
     if (s.checkpoint_every > 0 && t >= next_checkpoint - 1e-12 * t_end) {
-      while (next_checkpoint <= t + 1e-12 * t_end) next_checkpoint += s.checkpoint_every;
+      if ((t - next_checkpoint) / s.checkpoint_every < 1e3) {
+        while (next_checkpoint <= t + 1e-12 * t_end) next_checkpoint += s.checkpoint_every;
+      } else {  // an interval far below the sampling: one jump, not a loop per interval passed
+        next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
+      }
       save(t);
     }
     if (!s.quiet) progress.update(t, stats().steps, stepper->stats().last_dt);

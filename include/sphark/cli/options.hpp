@@ -188,9 +188,11 @@ StepperOptions stepper_options(const CoreOptions& o);
 // nothing is switched silently).
 StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, std::string_view program);
 
-// An interval option (e.g. --output-every) that must not exceed --t-end: a value the user gave
-// (was_given) that does is an error, "<option>: must not exceed --t-end" and exit 2; a default
-// that does follows the shorter run and becomes t_end.
+// An interval option (e.g. --output-every; 0 = off) that must lie in [t_end / kMaxOutputs, t_end]:
+// a value the user gave (was_given) outside it is an error ("<option>: must not exceed --t-end",
+// "<option>: ... more than 1e6 outputs ...", exit 2); a default outside it follows the run
+// (t_end for a short run, t_end / kMaxOutputs for a long one).
+inline constexpr Real kMaxOutputs = 1e6;
 void limit_to_t_end(const OptionParser& p, std::string_view option, Real& value, Real t_end);
 
 // Sets the OpenMP thread count and returns it: `threads`, or OpenMP's default (OMP_NUM_THREADS)
