@@ -80,13 +80,15 @@ void check_fixed_steps(const OptionParser& p, const StudyScene& scene, const Stu
     for (Real cfl : cfls)
       if (!(cfl * scene.cfl_unit() >= floor)) {
         char why[200];
-        std::snprintf(why, sizeof why, "CFL %.3g gives dt=%.3g, below the step floor %.3g (%.0e x t_end)", cfl,
-                      cfl * scene.cfl_unit(), floor, kStepFloorFraction);
+        std::snprintf(why, sizeof why, "CFL %.3g gives dt=%.3g, below the step floor %.3g (%.0e x --t-end %.3g)", cfl,
+                      cfl * scene.cfl_unit(), floor, kStepFloorFraction, scene.t_end());
         p.fail(option, why);
       }
   };
   if (!s.fixed_methods.empty()) check("--fixed-cfls", s.fixed_cfls);
   if (!s.leapfrog_methods.empty()) check("--leapfrog-cfls", s.leapfrog_cfls);
+  // the reference run (and every capped case) takes steps of at most cap_cfl x the CFL unit
+  check("--cap-cfl", {s.limits.cap_cfl});
   // a stability trial takes horizon / dt whole steps, down to CFL min_cfl
   const Real horizon = s.stability.horizon > 0 ? s.stability.horizon : scene.t_end();
   const Real steps = horizon / (s.stability.min_cfl * scene.cfl_unit());
@@ -185,7 +187,7 @@ int main(int argc, char** argv) {
   std::printf("stepper_study: %s; CFL unit h/(c+|v|) = %.4g; output %s\n", scene->description().c_str(), scene->cfl_unit(),
               s.out.c_str());
   try {
-    if (s.matrix && !run_work_precision(*scene, s)) return 1;
+    if (s.matrix && !run_work_precision(*scene, s)) return 3;  // the reference run failed (as a failed run: exit 3)
     if (s.stability_run) run_stability(*scene, s);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stepper_study: %s\n", e.what());

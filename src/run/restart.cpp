@@ -5,6 +5,7 @@
 #include "sphark/run/time_loop.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -101,6 +102,16 @@ void check_step_option(const OptionParser& p, const CoreOptions& core) {
   p.fail("--dt", why);
 }
 
+std::optional<std::string> checkpoint_number_problem(const Checkpoint& c) {
+  char why[160];
+  if (!std::isfinite(c.t) || c.t < 0) return std::snprintf(why, sizeof why, "time %g is not a time of a run", c.t), why;
+  if (!std::isfinite(c.last_dt) || c.last_dt < 0)
+    return std::snprintf(why, sizeof why, "last step %g is not a step", c.last_dt), why;
+  for (const auto& [name, v] : c.scalars)
+    if (!std::isfinite(v)) return "its number '" + name + "' is " + std::to_string(v);
+  return std::nullopt;
+}
+
 std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program) {
   const auto file = find_option_value(argc, argv, "--restart");
   if (!file) return std::nullopt;
@@ -113,6 +124,7 @@ std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv,
   }
   if (c.program != program)
     exit_usage_error(program, "--restart", "'" + *file + "' was written by " + c.program + ", not " + program);
+  if (const auto why = checkpoint_number_problem(c)) exit_usage_error(program, "--restart", "'" + *file + "': " + *why);
   return c;
 }
 

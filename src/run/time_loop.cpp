@@ -92,7 +92,8 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     for (auto& [name, ptr] : binds) *ptr = c.scalar(name);
     // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
     // new grid from the checkpoint time on.
-    if (c.scalar("sample_every") != s.sample_every) sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
+    if (c.scalar("sample_every") != s.sample_every || !(sample * s.sample_every > t))  // (the latter: a corrupt index)
+      sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
     if (c.scalar("frame_every") != frame_every) next_frame = (std::floor(t / frame_every * (1 + 1e-12)) + 1) * frame_every;
     if (c.scalar("checkpoint_every") != s.checkpoint_every && s.checkpoint_every > 0)
       next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;

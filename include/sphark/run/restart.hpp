@@ -61,9 +61,13 @@ void apply_run_control(TimeLoopSettings& ts, const RunControlOptions& o, const C
 void start_run(CoreOptions& core, std::string_view program);
 
 // The checkpoint named by --restart (nullopt without the option), loaded before anything is
-// parsed or written. A missing value, an unreadable or corrupt file or one written by another
-// program: one line "<program>: --restart: ..." and exit 2.
+// parsed or written. A missing value, an unreadable or corrupt file, one written by another
+// program or one whose numbers cannot be a run's (checkpoint_number_problem): one line
+// "<program>: --restart: ..." and exit 2.
 std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program);
+// Why a (well-formed) checkpoint's numbers cannot be a run's: a negative or non-finite time or
+// last step, a non-finite scalar; nullopt if they can.
+std::optional<std::string> checkpoint_number_problem(const Checkpoint& c);
 
 // This run's argument list, [program] first: on a restart the checkpoint's stored options, then
 // the ones given now (which override them), without --restart itself.
