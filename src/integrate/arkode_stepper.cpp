@@ -181,7 +181,7 @@ std::string ArkodeStepper::failure_text(int flag, Real t, int consecutive) const
   return why;
 }
 
-AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
+AdvanceStatus ArkodeStepper::evolve_to(Real t_out, Real* y, Real& t, int itask) {
   ScopedPhase timer(Phase::Advance);
   const std::size_t n = system_.size();
   roots_.clear();
@@ -209,11 +209,11 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     callback_error_.clear();
     arkode_message_.clear();
     evolved_ = true;
-    const int flag = api_.evolve(mem_, t_out, yout.get(), &t, ARK_NORMAL);
+    const int flag = api_.evolve(mem_, t_out, yout.get(), &t, itask);
     if (flag >= 0) {
       std::copy(y, y + n, y_last_.begin());
       t_last_ = t;
-      if (flag != ARK_ROOT_RETURN) return AdvanceStatus::Reached;
+      if (flag != ARK_ROOT_RETURN) return t < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
       roots_.assign(static_cast<std::size_t>(system_.num_roots()), 0);
       check(api_.get_root_info(mem_, roots_.data()), "GetRootInfo");
       return AdvanceStatus::RootFound;

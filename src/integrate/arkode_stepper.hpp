@@ -39,7 +39,8 @@ struct ArkodeApi {
 
 class ArkodeStepper : public Stepper {
  public:
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override;
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return evolve_to(t_out, y, t, ARK_NORMAL); }
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override { return evolve_to(t_out, y, t, ARK_ONE_STEP); }
   StepperStats stats() const override;
   std::string failure_reason() const override { return failure_; }
   std::vector<int> roots_found() const override { return roots_; }
@@ -91,6 +92,8 @@ class ArkodeStepper : public Stepper {
   void* mem_ = nullptr;       // owned by the derived class (ErkMemPtr / ArkMemPtr)
 
  private:
+  // ARKODE's evolve to t_out (itask ARK_NORMAL: all the way; ARK_ONE_STEP: one internal step).
+  AdvanceStatus evolve_to(Real t_out, Real* y, Real& t, int itask);
   void record(const char* what, Real t, int code) noexcept;
   void record_exception(const char* what, Real t, const char* message) noexcept;
   void bound_step(Real t_out);

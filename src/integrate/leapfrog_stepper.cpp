@@ -62,13 +62,17 @@ class LeapfrogStepper final : public Stepper {
     mark_blocks();
   }
 
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return steps_to(t_out, y, t, false); }
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override { return steps_to(t_out, y, t, true); }
+
+  // Steps towards t_out: all the way, or one (single).
+  AdvanceStatus steps_to(Real t_out, Real* y, Real& t, bool single) {
     ScopedPhase timer(Phase::Advance);
     roots_.clear();
     if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
     if (!failed_ && !started_) start();
     interrupted_ = false;
-    while (!failed_ && t_ < t_out) {
+    for (bool first = true; !failed_ && t_ < t_out && (first || !single); first = false) {
       if (interrupt_now()) break;
       Real dt = choose_dt();
       if (failed_) break;
@@ -88,7 +92,8 @@ class LeapfrogStepper final : public Stepper {
     }
     finish(y, t);
     if (failed_) return AdvanceStatus::Failed;
-    return interrupted_ ? AdvanceStatus::Interrupted : AdvanceStatus::Reached;
+    if (interrupted_) return AdvanceStatus::Interrupted;
+    return t < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
   }
 
   StepperStats stats() const override {

@@ -93,6 +93,10 @@ TimeLoopHooks hooks_of(SceneRun& run, SetupWatchdog& watchdog) {
   h.finished = [&run](Real t) { return run.finished(t); };
   h.root = [&run](Real t, const std::vector<int>& found) { return run.root(t, found); };
   h.state = run.saved_numbers();
+  if (run.changes_particles()) {
+    h.after_step = [&run](Real t, const Real* y) { return run.after_step(t, y); };
+    h.restart_layout = [&run](const Checkpoint& c) { return run.restart_layout(c); };
+  }
   return h;
 }
 

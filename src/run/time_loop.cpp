@@ -52,9 +52,27 @@ struct CountBase {
   }
 };
 
+// Advances to t_out: in one call, or (with hooks.after_step) step by step, resizing the state and
+// the stepper when the hook asks for it.
+AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_out, std::vector<Real>& y, Real& t,
+                         StateLayout& layout) {
+  if (!hooks.after_step) return stepper.advance(t_out, y.data(), t);
+  for (;;) {
+    const AdvanceStatus st = stepper.step(t_out, y.data(), t);
+    if (st != AdvanceStatus::Stepped && st != AdvanceStatus::Reached) return st;
+    if (std::optional<TimeLoopHooks::Resize> r = hooks.after_step(t, y.data())) {
+      if (r->y.size() != r->layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
+      layout = std::move(r->layout);
+      y = std::move(r->y);
+      stepper.resize({y.data(), r->atol.empty() ? nullptr : r->atol.data(), nullptr});
+    }
+    if (st == AdvanceStatus::Reached) return st;
+  }
+}
+
 }  // namespace
 
-TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, StepperOptions opts, std::vector<Real> y0,
+TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
                              const TimeLoopSettings& s, const TimeLoopHooks& hooks) {
   if (!(s.sample_every > 0)) throw std::invalid_argument("run_time_loop: sample_every must be positive");
   if (!hooks.diagnostics) throw std::invalid_argument("run_time_loop: no diagnostics hook");
@@ -82,10 +100,12 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
   binds.insert(binds.end(), hooks.state.begin(), hooks.state.end());
 
   std::vector<Real> y = std::move(y0);
+  StateLayout layout = initial_layout;  // changes when after_step resizes the state
   if (y.size() != layout.size()) throw std::invalid_argument("run_time_loop: initial state does not fit the layout");
   Real t = 0;
   if (s.restart) {
     const Checkpoint& c = *s.restart;
+    if (hooks.restart_layout) layout = hooks.restart_layout(c);
     if (auto why = layout_mismatch(c, layout)) throw std::runtime_error("--restart: " + *why);
     y = c.y;
     t = c.t;
@@ -167,7 +187,7 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
       break;
     }
     const Real t_out = std::min(t_end, sample * s.sample_every);
-    const AdvanceStatus st = stepper->advance(t_out, y.data(), t);
+    const AdvanceStatus st = advance_to(*stepper, hooks, t_out, y, t, layout);
     if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
       res.status = TimeLoopStatus::Stopped;
       res.signal = stop_requested();

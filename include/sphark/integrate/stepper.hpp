@@ -52,10 +52,11 @@
 
 namespace sphark {
 
+// Stepped: step() took one step and t is still before t_out.
 // Interrupted: StepperOptions::interrupt said so (a stop signal); y, t hold the last accepted
 // step. A later advance() continues from there (the ARKODE steppers restart their memory at that
 // step with the last step size as the first one; the leapfrog goes on as if never interrupted).
-enum class AdvanceStatus { Reached, RootFound, Failed, Interrupted };
+enum class AdvanceStatus { Reached, RootFound, Failed, Stepped, Interrupted };
 
 class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
  public:
@@ -66,6 +67,10 @@ class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
   // The stepper keeps its own state: the content of y on entry is ignored.
   // Throws std::invalid_argument if t_out is before the current time.
   virtual AdvanceStatus advance(Real t_out, Real* y, Real& t) = 0;
+  // One step towards t_out (landing on it, never past it): Stepped with t < t_out, Reached at
+  // t_out, or RootFound / Failed as advance(). Between two calls the caller may inspect y and
+  // resize(). The step-size bounds of advance() are taken at every call. (Default: advance().)
+  virtual AdvanceStatus step(Real t_out, Real* y, Real& t) { return advance(t_out, y, t); }
   virtual StepperStats stats() const = 0;
   // After Failed: flag name + message, time, and system.last_error().
   virtual std::string failure_reason() const = 0;

@@ -65,6 +65,11 @@ class SceneRun {
   virtual bool finished(Real /*t*/) { return false; }
   virtual bool root(Real /*t*/, const std::vector<int>& /*found*/) { return false; }
   virtual std::vector<std::pair<std::string, Real*>> saved_numbers() { return {}; }
+  // A run whose particle set changes between steps (sink particles created, gas accreted): the
+  // loop then steps one by one and calls after_step (TimeLoopHooks::after_step, restart_layout).
+  virtual bool changes_particles() const { return false; }
+  virtual std::optional<TimeLoopHooks::Resize> after_step(Real /*t*/, const Real* /*y*/) { return std::nullopt; }
+  virtual StateLayout restart_layout(const Checkpoint& /*c*/) { return layout(); }
   // Where and how often it writes: the driver fills `s` (program, run, options, scene text,
   // t_end, sample/frame intervals from --output-every, <dir>/diagnostics.csv, <dir>/<name>_NNNNN.vtp,
   // <dir>/checkpoint.bin, run control) before this call; a scene changes what differs.

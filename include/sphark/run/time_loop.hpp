@@ -26,6 +26,7 @@
 // fixed-step method whenever the system's rhs depends on y alone.
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -87,6 +88,18 @@ struct TimeLoopHooks {
   std::function<bool(Real t, const std::vector<int>& found)> root;
   // Named run-loop numbers saved in checkpoints and restored on restart (bound by pointer).
   std::vector<std::pair<std::string, Real*>> state;
+  // Optional: called after every step (the loop then steps one by one, Stepper::step) with the
+  // state at t; a system whose particle count changes (sinks created, gas accreted) returns its
+  // new layout and state, which the stepper then continues from (Stepper::resize).
+  struct Resize {
+    StateLayout layout;
+    std::vector<Real> y;
+    std::vector<Real> atol;  // per entry of the new state when the run uses per-entry tolerances
+  };
+  std::function<std::optional<Resize>(Real t, const Real* y)> after_step;
+  // Optional, with after_step: on a restart, the system takes the checkpoint's species counts
+  // and returns its layout (which must then match the checkpoint's).
+  std::function<StateLayout(const Checkpoint& c)> restart_layout;
   // Optional: called once the stepper exists, before the first output (the set-up is over: from
   // here on a stop signal is answered with a checkpoint).
   std::function<void()> started;

@@ -148,7 +148,7 @@ inline void finish_particle(const PairSums<D>& s, const ParticleA<D>& pa, const 
     if (in.subtract_monopole) mhd::subtract_monopole_force<D>(dv_dt, pa.B, s.monopole);  // eq. (9)
     Eigen::Map<Vec<D>>(out.dx_dt + D * p) = pa.v;
     Eigen::Map<Vec<D>>(out.dv_dt + D * p) = dv_dt;
-    out.du_dt[p] = in.P[a] * in.inv_omega_rho2[a] * s.continuity + s.du_dt_dissipation;
+    if (out.du_dt) out.du_dt[p] = in.P[a] * in.inv_omega_rho2[a] * s.continuity + s.du_dt_dissipation;
     if (in.induction) dB_dt += s.induction.finish(inv_omega_rho) + pa.rho * s.resistive;  // eqs. (7), (10)
     else out.dalpha_dt[p] = 0;  // alpha advected with the flow: d alpha / dt = 0
   }
@@ -183,7 +183,8 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   pair_loop_arrays(y);
   const bool evolve = opt_.evolve_particles, induction = opt_.field == FieldRepresentation::MagneticField;
   const bool cleaning = opt_.cleaning != Cleaning::None;
-  const PairLoopInput in{x_.data(), evolve ? v_.data() : nullptr, evolve ? u_.data() : nullptr,
+  const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
+  const PairLoopInput in{x_.data(), evolve ? v_.data() : nullptr, energy ? u_.data() : nullptr,
                          cleaning ? psi_.data() : nullptr, ms_.data(), h_.data(), inv_h_.data(), grad_scale_.data(),
                          rho_.data(), omega_.data(), P_.data(), fast_speed_.data(), B_.data(), inv_omega_rho2_.data(),
                          stress_over_omega_rho2_.data(), b_over_omega_rho2_.data(), psi_over_omega_rho2_.data(),
@@ -194,7 +195,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   auto derivative = [&](Field f, bool present) { return present ? ydot + layout_.offset(f) : nullptr; };
   const PairLoopOutput out{perm_.data(),
                            derivative(Field::Position, evolve), derivative(Field::Velocity, evolve),
-                           derivative(Field::InternalEnergy, evolve), derivative(Field::MagneticField, induction),
+                           derivative(Field::InternalEnergy, energy), derivative(Field::MagneticField, induction),
                            derivative(Field::EulerAlpha, !induction), derivative(Field::Psi, cleaning),
                            divB_.data(), divv_.data()};
   const NeighbourList& L = ns_.list();
