@@ -1,7 +1,6 @@
 #include "sphark/scenes/gravitating_sphere/gravitating_sphere_scene.hpp"
 
 #include <algorithm>
-
 #include <cmath>
 #include <cstdio>
 #include <sstream>
