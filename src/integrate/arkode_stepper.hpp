@@ -65,6 +65,10 @@ class ArkodeStepper : public Stepper {
     return v;
   }
 
+  // StepperOptions::interrupt, polled by the RHS callbacks before they evaluate: true (the
+  // callback then returns -1 and advance() reports Interrupted). Never throws.
+  bool interrupt_now() noexcept;
+
   // Runs a system call inside a C callback: exceptions become -1, non-zero codes are recorded.
   template <class F>
   int guarded(const char* what, Real t, F&& call) noexcept {
@@ -95,6 +99,9 @@ class ArkodeStepper : public Stepper {
   void bound_step(Real t_out);
   void set_tolerances();
   bool recover(int& consecutive);
+  void restart_after_interrupt();
+  AdvanceStatus end_at_last_accepted(Real* y, Real& t, AdvanceStatus status);
+  std::string failure_text(int flag, Real t, int consecutive) const;
   void check(int flag, const char* call) const;
   std::string flag_name(int flag) const;
   static int roots_cb(realtype t, N_Vector y, realtype* g, void* self);
@@ -109,6 +116,11 @@ class ArkodeStepper : public Stepper {
   Real t_accepted_ = 0;
   bool fixed_step_reduced_ = false;
   bool below_min_dt_ = false;  // the last recover() stopped at StepperOptions::min_dt
+  bool interrupted_ = false;   // StepperOptions::interrupt stopped the current advance()
+  bool restart_pending_ = false;  // interrupted: the ARKODE memory restarts at the last accepted step
+  std::string floor_failure_;  // a step below StepperOptions::step_floor (or not advancing t) ended the run
+  Real t_out_ = 0;             // of the current advance() (its landing step may be a sliver)
+  int steps_below_floor_ = 0;  // consecutive accepted steps below StepperOptions::step_floor
   Real step_cap_ = 0;  // max step of an adaptive run during the current advance()
   int last_code_ = 0;         // last non-zero return of a system callback
   std::string callback_error_;

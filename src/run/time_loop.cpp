@@ -112,7 +112,8 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
     for (auto& [name, ptr] : binds) *ptr = c.scalar(name);
     // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
     // new grid from the checkpoint time on.
-    if (c.scalar("sample_every") != s.sample_every) sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
+    if (c.scalar("sample_every") != s.sample_every || !(sample * s.sample_every > t))  // (the latter: a corrupt index)
+      sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
     if (c.scalar("frame_every") != frame_every) next_frame = (std::floor(t / frame_every * (1 + 1e-12)) + 1) * frame_every;
     if (c.scalar("checkpoint_every") != s.checkpoint_every && s.checkpoint_every > 0)
       next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
@@ -127,8 +128,11 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
     const Real scale = std::isfinite(stable) && stable > 0 ? std::min(stable, s.sample_every) : s.sample_every;
     opts.min_dt = s.min_dt_fraction * scale;
   }
+  if (opts.step_floor <= 0) opts.step_floor = s.step_floor_fraction * t_end;
+  if (!opts.interrupt) opts.interrupt = [] { return stop_requested() != 0; };
   if (s.inject_nan_at > 0) opts.inject_nan_from = s.inject_nan_at;
   auto stepper = make_stepper(system, opts, t, y.data());
+  if (hooks.started) hooks.started();
   const auto stats = [&] { return base.total(stepper->stats()); };
 
   const auto save = [&](Real time) {
@@ -184,6 +188,12 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
     }
     const Real t_out = std::min(t_end, sample * s.sample_every);
     const AdvanceStatus st = advance_to(*stepper, hooks, t_out, y, t, layout);
+    if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
+      res.status = TimeLoopStatus::Stopped;
+      res.signal = stop_requested();
+      save(t);
+      break;
+    }
     if (st == AdvanceStatus::Failed) {  // y, t: the last good state
       res.status = TimeLoopStatus::Failed;
       res.failure = stepper->failure_reason();
@@ -210,7 +220,11 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
     record(t);
     if (hooks.finished && hooks.finished(t)) res.status = TimeLoopStatus::EndedEarly;
     if (s.checkpoint_every > 0 && t >= next_checkpoint - 1e-12 * t_end) {
-      while (next_checkpoint <= t + 1e-12 * t_end) next_checkpoint += s.checkpoint_every;
+      if ((t - next_checkpoint) / s.checkpoint_every < 1e3) {
+        while (next_checkpoint <= t + 1e-12 * t_end) next_checkpoint += s.checkpoint_every;
+      } else {  // an interval far below the sampling: one jump, not a loop per interval passed
+        next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
+      }
       save(t);
     }
     if (!s.quiet) progress.update(t, stats().steps, stepper->stats().last_dt);

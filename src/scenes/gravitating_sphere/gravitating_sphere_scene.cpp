@@ -1,5 +1,6 @@
 #include "sphark/scenes/gravitating_sphere/gravitating_sphere_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -129,6 +130,13 @@ std::string GravitatingSphereScene::scene_text(const std::string&) const {
 
 std::unique_ptr<SceneRun> GravitatingSphereScene::make_run(const std::string&, const CoreOptions&) {
   return std::make_unique<SphereRun>(params_, diagnostics_every_);
+}
+
+// The cost probe (run/cost_estimate.hpp): the same sphere with fewer particles.
+std::unique_ptr<SceneRun> GravitatingSphereScene::make_probe_run(const std::string&, const CoreOptions&, Real particles) {
+  GravitatingSphereParams p = params_;
+  p.particles = std::min(p.particles, static_cast<std::size_t>(particles));
+  return std::make_unique<SphereRun>(p, diagnostics_every_);
 }
 
 void GravitatingSphereScene::finished(const std::string&, SceneRun&, const TimeLoopResult& result) {
