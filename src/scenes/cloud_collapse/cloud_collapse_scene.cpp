@@ -1,6 +1,7 @@
 #include "sphark/scenes/cloud_collapse/cloud_collapse_scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "collapse_run.hpp"
 #include "sphark/run/restart.hpp"
@@ -102,6 +103,23 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
 std::unique_ptr<SceneRun> CloudCollapseScene::make_run(const std::string& run, const CoreOptions&) {
   CloudCollapseParams p = params_;
   p.variant = run;
+  return std::make_unique<CollapseRun>(p, diagnostics_every_ * free_fall_time_);
+}
+
+// The ambient lattice adds (L^3 - 4/3 pi R^3) / (4/3 pi R^3) / contrast particles per sphere particle.
+Real CloudCollapseScene::predicted_particles(const std::string&) const {
+  const Real sphere = 4.0 / 3.0 * 3.14159265358979323846;
+  const Real box = std::pow(params_.box_over_radius, 3);
+  return static_cast<Real>(particles_) * (1 + std::max<Real>(box - sphere, 0) / sphere / params_.density_contrast);
+}
+
+std::unique_ptr<SceneRun> CloudCollapseScene::make_probe_run(const std::string& run, const CoreOptions&,
+                                                             Real particles) {
+  CloudCollapseParams p = params_;
+  p.variant = run;
+  const Real per_sphere_particle = predicted_particles(run) / static_cast<Real>(std::max<long>(particles_, 1));
+  p.particles = std::max<std::size_t>(100, static_cast<std::size_t>(particles / per_sphere_particle));
+  p.particles = std::min<std::size_t>(p.particles, params_.particles);
   return std::make_unique<CollapseRun>(p, diagnostics_every_ * free_fall_time_);
 }
 

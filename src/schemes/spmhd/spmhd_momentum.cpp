@@ -6,6 +6,7 @@
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/mhd_operators.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+#include "sphark/schemes/spmhd/unit_kernel.hpp"
 
 namespace sphark {
 
@@ -36,10 +37,12 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
       const Vec<D> x_ab = image(x_.data() + D * a, x_.data() + D * b);
       const Real r = x_ab.norm();
       if (r >= K::support * std::max(h_[a], h_[b]) || r == 0) continue;
-      const Vec<D> g_a = K::f_over_r(r, h_[a]) * x_ab, g_b = K::f_over_r(r, h_[b]) * x_ab;
+      // the force pass's kernel gradients (spmhd_forces.cpp)
+      const Vec<D> g_a = grad_scale_[a] * UnitKernel<K>::f_over_r(r * inv_h_[a], h_[a] / r) * x_ab;
+      const Vec<D> g_b = grad_scale_[b] * UnitKernel<K>::f_over_r(r * inv_h_[b], h_[b] / r) * x_ab;
       S += mhd::monopole_term(ms_[b], oB_a, g_a, Eigen::Map<const Vec<D>>(&b_over_omega_rho2_[3 * b]), g_b);
     }
-    m.tensile -= ms_[a] * S * Eigen::Map<const Vec3>(&B_[3 * a]).template head<D>();
+    m.tensile -= ms_[a] * S * Eigen::Map<const Vec<3>>(&B_[3 * a]).template head<D>();
   }
   return m;
 }

@@ -35,6 +35,9 @@ class CloudCollapseScene final : public Scene {
   std::filesystem::path subdirectory(const std::string& run) const override;
   std::string scene_text(const std::string& run) const override;
   std::unique_ptr<SceneRun> make_run(const std::string& run, const CoreOptions& core) override;
+  Real predicted_particles(const std::string& run) const override;  // sphere and ambient
+  std::string size_option() const override { return "--particles"; }
+  std::unique_ptr<SceneRun> make_probe_run(const std::string& run, const CoreOptions& core, Real particles) override;
   void finished(const std::string& run, SceneRun& r, const TimeLoopResult& result) override;
   int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
   std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& runs_done) const override;
