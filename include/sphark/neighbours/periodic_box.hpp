@@ -6,16 +6,20 @@
 #include <optional>
 
 #include "sphark/core/types.hpp"
+#include "sphark/simd/lanes.hpp"
 
 namespace sphark {
 
 // Round to the nearest integer (ties to even), equal to std::nearbyint in the default rounding
 // mode for |x| < 2^51. Without SSE4.1 std::nearbyint is a libm call; this is two additions
 // (x + 1.5 * 2^52 lies where the spacing of doubles is 1). Not folded away without -ffast-math.
-inline Real round_to_nearest(Real x) {
+// (For lanes of values too, simd/lanes.hpp.)
+template <class S>
+inline S round_to_nearest_lanes(S x) {
   constexpr Real kShift = 6755399441055744.0;  // 1.5 * 2^52
   return (x + kShift) - kShift;
 }
+inline Real round_to_nearest(Real x) { return round_to_nearest_lanes(x); }
 
 template <int D>
 struct PeriodicBox {
@@ -82,6 +86,13 @@ struct MinimumImage {
       d[k] = xa[k] - xb[k];
       d[k] -= L[k] * round_to_nearest(d[k] * inv_L[k]);
     }
+    return d;
+  }
+  // The same for lanes of separations x_a - x_b (simd/lanes.hpp); open axes are left alone.
+  template <class S>
+  simd::LaneVec<S, D> operator()(simd::LaneVec<S, D> d) const {
+    for (int k = 0; k < D; ++k)
+      if (L[k] != 0) d[k] -= L[k] * round_to_nearest_lanes(d[k] * inv_L[k]);
     return d;
   }
 };

@@ -1,0 +1,203 @@
+#pragma once
+// Lanes: W pair interactions computed at once, for the pair loops' vector paths. A lane type S is
+// Real (W = 1, the scalar path) or a GCC/Clang vector of W doubles (Real2: SSE2, the x86-64
+// baseline; Real4: AVX2, used only inside functions compiled for AVX2 and chosen at run time,
+// simd/dispatch.hpp). The arithmetic operators, comparisons (a mask per lane) and `m ? a : b`
+// (select per lane) are the language's on every lane type, so a pair term written once with them
+// serves every width; what the language lacks is here: broadcast, sqrt, min / max, positive
+// part, horizontal sum, the gather of a neighbour field, and LaneVec<S, D> (a D-vector of lanes,
+// the few operations the pair terms use on vectors, as Eigen's Vec<D> has them).
+//
+// No intrinsic is always_inline here, so that a template instantiated for Real4 outside an AVX2
+// function is ordinary (slow, correct) code, never an error nor an AVX2 instruction in a
+// baseline function: the AVX2 pair loops are flattened functions with target("avx2,fma").
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
+#include "sphark/core/types.hpp"
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // vector arguments of inline helpers (always inlined into their users)
+#endif
+
+namespace sphark::simd {
+
+typedef double Real2 __attribute__((vector_size(16)));
+typedef double Real4 __attribute__((vector_size(32)));
+
+template <class S>
+inline constexpr int width = 1;
+template <>
+inline constexpr int width<Real2> = 2;
+template <>
+inline constexpr int width<Real4> = 4;
+
+template <class S>
+inline S broadcast(Real x) {
+  if constexpr (width<S> == 1) return x;
+  else return S{} + x;
+}
+
+// Lane l holds l: 0, 1, ..., W - 1.
+template <class S>
+inline S lane_numbers() {
+  if constexpr (width<S> == 1) {
+    return 0;
+  } else {
+    S s{};
+    for (int l = 0; l < width<S>; ++l) s[l] = l;
+    return s;
+  }
+}
+
+template <class S>
+inline S min(S a, S b) { return b < a ? b : a; }  // as std::min
+template <class S>
+inline S max(S a, S b) { return a < b ? b : a; }  // as std::max
+// max(x, 0), the clamp of the compactly supported kernel shapes
+template <class S>
+inline S positive_part(S x) { return max(x, S{}); }
+template <class S>
+inline S abs(S x) { return x < S{} ? -x : x; }
+
+inline Real sqrt(Real x) { return std::sqrt(x); }
+#if defined(__SSE2__)
+inline Real2 sqrt(Real2 x) { return __builtin_ia32_sqrtpd(x); }
+#else
+inline Real2 sqrt(Real2 x) { return Real2{std::sqrt(x[0]), std::sqrt(x[1])}; }
+#endif
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((target("avx2,fma"))) inline Real4 sqrt(Real4 x) { return __builtin_ia32_sqrtpd256(x); }
+#define SPHARK_SIMD_HAVE_AVX2 1
+#endif
+
+// Bit l set if lane l of a mask (a comparison's result) is set.
+inline unsigned mask_bits(bool m) { return m; }
+inline unsigned mask_bits(int m) { return m != 0; }
+typedef long Mask2 __attribute__((vector_size(16)));
+typedef long Mask4 __attribute__((vector_size(32)));
+#if defined(__SSE2__)
+inline unsigned mask_bits(Mask2 m) { return static_cast<unsigned>(__builtin_ia32_movmskpd(reinterpret_cast<Real2>(m))); }
+#else
+inline unsigned mask_bits(Mask2 m) { return (m[0] != 0) | (m[1] != 0) << 1; }
+#endif
+#if defined(SPHARK_SIMD_HAVE_AVX2)
+__attribute__((target("avx2,fma"))) inline unsigned mask_bits(Mask4 m) {
+  return static_cast<unsigned>(__builtin_ia32_movmskpd256(reinterpret_cast<Real4>(m)));
+}
+#endif
+
+// For each mask of W lanes: its set lanes in order, and how many.
+template <int W>
+struct SetLanes {
+  std::uint8_t lane[1 << W][W] = {};
+  std::uint8_t count[1 << W] = {};
+  constexpr SetLanes() {
+    for (unsigned bits = 0; bits < (1u << W); ++bits)
+      for (int l = 0; l < W; ++l)
+        if (bits >> l & 1) lane[bits][count[bits]++] = static_cast<std::uint8_t>(l);
+  }
+};
+template <int W>
+inline constexpr SetLanes<W> kSetLanes{};
+
+// Appends the entries b[l] of the set lanes l (bits) to out[n ...) in lane order; returns the
+// new n. Branch-free: always writes W entries (out needs W spare slots).
+template <int W>
+inline std::size_t append_lanes(unsigned bits, const std::uint32_t* b, std::uint32_t* out, std::size_t n) {
+  for (int l = 0; l < W; ++l) out[n + l] = b[kSetLanes<W>.lane[bits][l]];
+  return n + kSetLanes<W>.count[bits];
+}
+
+// Sum of the lanes, (l0 + l1) + (l2 + l3) for four: a fixed order.
+inline Real sum(Real x) { return x; }
+inline Real sum(Real2 x) { return x[0] + x[1]; }
+inline Real sum(Real4 x) { return (x[0] + x[1]) + (x[2] + x[3]); }
+
+// Lane l holds base[stride * index[l]]: a neighbour field for W neighbours.
+template <class S>
+inline S gather(const Real* base, const std::uint32_t* index, int stride) {
+  if constexpr (width<S> == 1) {
+    return base[static_cast<std::size_t>(stride) * index[0]];
+  } else {
+    S s;
+    for (int l = 0; l < width<S>; ++l) s[l] = base[static_cast<std::size_t>(stride) * index[l]];
+    return s;
+  }
+}
+
+// A D-vector of lanes: component k holds W values (the pair terms' x_ab, v_ab, gradients).
+template <class S, int D>
+struct LaneVec {
+  S c[D];
+
+  static LaneVec zero() {
+    LaneVec v;
+    for (int k = 0; k < D; ++k) v.c[k] = S{};
+    return v;
+  }
+  static LaneVec broadcast(const Vec<D>& x) {
+    LaneVec v;
+    for (int k = 0; k < D; ++k) v.c[k] = simd::broadcast<S>(x[k]);
+    return v;
+  }
+  // component k of W neighbours stored D per particle
+  static LaneVec gather(const Real* base, const std::uint32_t* index) {
+    LaneVec v;
+    for (int k = 0; k < D; ++k) v.c[k] = simd::gather<S>(base + k, index, D);
+    return v;
+  }
+  S& operator[](int k) { return c[k]; }
+  const S& operator[](int k) const { return c[k]; }
+  S dot(const LaneVec& o) const {
+    S s = c[0] * o.c[0];
+    for (int k = 1; k < D; ++k) s += c[k] * o.c[k];
+    return s;
+  }
+  S squaredNorm() const { return dot(*this); }
+  LaneVec& operator+=(const LaneVec& o) {
+    for (int k = 0; k < D; ++k) c[k] += o.c[k];
+    return *this;
+  }
+  LaneVec& operator-=(const LaneVec& o) {
+    for (int k = 0; k < D; ++k) c[k] -= o.c[k];
+    return *this;
+  }
+  // the sum of the lanes of each component
+  Vec<D> sum() const {
+    Vec<D> v;
+    for (int k = 0; k < D; ++k) v[k] = simd::sum(c[k]);
+    return v;
+  }
+};
+
+template <class S, int D>
+inline LaneVec<S, D> operator+(LaneVec<S, D> a, const LaneVec<S, D>& b) { return a += b; }
+template <class S, int D>
+inline LaneVec<S, D> operator-(LaneVec<S, D> a, const LaneVec<S, D>& b) { return a -= b; }
+template <class S, int D>
+inline LaneVec<S, D> operator-(LaneVec<S, D> a) {
+  for (int k = 0; k < D; ++k) a.c[k] = -a.c[k];
+  return a;
+}
+template <class S, int D>
+inline LaneVec<S, D> operator*(S s, LaneVec<S, D> a) {
+  for (int k = 0; k < D; ++k) a.c[k] = s * a.c[k];
+  return a;
+}
+template <class S, int D>
+  requires(!std::is_same_v<S, Real>)
+inline LaneVec<S, D> operator*(Real s, LaneVec<S, D> a) {
+  for (int k = 0; k < D; ++k) a.c[k] = s * a.c[k];
+  return a;
+}
+template <class S, int D>
+inline LaneVec<S, D> operator*(LaneVec<S, D> a, S s) { return s * a; }
+
+}  // namespace sphark::simd
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
