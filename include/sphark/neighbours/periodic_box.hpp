@@ -70,6 +70,7 @@ struct PeriodicBox {
 template <int D>
 struct MinimumImage {
   Vec<D> L = Vec<D>::Zero(), inv_L = Vec<D>::Zero();
+  bool periodic = false;  // along some axis
   MinimumImage() = default;
   explicit MinimumImage(const std::optional<PeriodicBox<D>>& box) {
     if (!box) return;
@@ -77,6 +78,7 @@ struct MinimumImage {
       if (box->periodic[k]) {
         L[k] = box->hi[k] - box->lo[k];
         inv_L[k] = 1.0 / L[k];
+        periodic = true;
       }
   }
   // x_a - x_b reduced to the nearest periodic image.
@@ -88,11 +90,11 @@ struct MinimumImage {
     }
     return d;
   }
-  // The same for lanes of separations x_a - x_b (simd/lanes.hpp); open axes are left alone.
+  // The same for lanes of separations x_a - x_b (simd/lanes.hpp); nothing without a periodic axis.
   template <class S>
   simd::LaneVec<S, D> operator()(simd::LaneVec<S, D> d) const {
-    for (int k = 0; k < D; ++k)
-      if (L[k] != 0) d[k] -= L[k] * round_to_nearest_lanes(d[k] * inv_L[k]);
+    if (periodic)
+      for (int k = 0; k < D; ++k) d[k] -= L[k] * round_to_nearest_lanes(d[k] * inv_L[k]);
     return d;
   }
 };

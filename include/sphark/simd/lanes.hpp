@@ -92,22 +92,30 @@ __attribute__((target("avx2,fma"))) inline unsigned mask_bits(Mask4 m) {
 // For each mask of W lanes: its set lanes in order, and how many.
 template <int W>
 struct SetLanes {
-  std::uint8_t lane[1 << W][W] = {};
+  alignas(16) std::uint32_t lane[1 << W][W] = {};
   std::uint8_t count[1 << W] = {};
   constexpr SetLanes() {
     for (unsigned bits = 0; bits < (1u << W); ++bits)
       for (int l = 0; l < W; ++l)
-        if (bits >> l & 1) lane[bits][count[bits]++] = static_cast<std::uint8_t>(l);
+        if (bits >> l & 1) lane[bits][count[bits]++] = static_cast<std::uint32_t>(l);
   }
 };
 template <int W>
 inline constexpr SetLanes<W> kSetLanes{};
 
 // Appends the entries b[l] of the set lanes l (bits) to out[n ...) in lane order; returns the
-// new n. Branch-free: always writes W entries (out needs W spare slots).
+// new n. Branch-free: always writes W entries (out needs W spare slots). Four lanes: one
+// shuffle of the four indices by the mask's table row (one vpermilps with AVX).
 template <int W>
 inline std::size_t append_lanes(unsigned bits, const std::uint32_t* b, std::uint32_t* out, std::size_t n) {
-  for (int l = 0; l < W; ++l) out[n + l] = b[kSetLanes<W>.lane[bits][l]];
+  if constexpr (W == 4) {
+    typedef std::uint32_t U4 __attribute__((vector_size(16)));
+    typedef std::uint32_t U4u __attribute__((vector_size(16), aligned(4), may_alias));
+    const U4 packed = __builtin_shuffle(*reinterpret_cast<const U4u*>(b), *reinterpret_cast<const U4*>(kSetLanes<4>.lane[bits]));
+    *reinterpret_cast<U4u*>(out + n) = packed;
+  } else {
+    for (int l = 0; l < W; ++l) out[n + l] = b[kSetLanes<W>.lane[bits][l]];
+  }
   return n + kSetLanes<W>.count[bits];
 }
 
@@ -126,6 +134,45 @@ inline S gather(const Real* base, const std::uint32_t* index, int stride) {
     for (int l = 0; l < width<S>; ++l) s[l] = base[static_cast<std::size_t>(stride) * index[l]];
     return s;
   }
+}
+
+// Records: the fields of particle i that its neighbours read, stride doubles from records +
+// stride * i, in groups of four (stride a multiple of 4). gather_group returns fields
+// first .. first + 3 of W particles as four lane values: on four lanes, one load of each
+// particle's group and a 4 x 4 transpose (8 shuffles) instead of 16 loads and 12 inserts.
+template <class S>
+struct Group {
+  S f[4];
+};
+// W consecutive doubles at p (any 8-byte alignment) as one vector load.
+template <class S>
+inline S load(const Real* p) {
+  typedef Real Unaligned __attribute__((vector_size(sizeof(S)), aligned(8), may_alias));
+  return *reinterpret_cast<const Unaligned*>(p);
+}
+template <class S>
+inline Group<S> gather_group(const Real* records, int stride, const std::uint32_t* index, int first) {
+  Group<S> g;
+  if constexpr (width<S> == 4) {
+    S r[4];
+    for (int l = 0; l < 4; ++l) r[l] = load<S>(records + static_cast<std::size_t>(stride) * index[l] + first);
+    const S t0 = __builtin_shuffle(r[0], r[1], Mask4{0, 4, 2, 6}), t1 = __builtin_shuffle(r[0], r[1], Mask4{1, 5, 3, 7});
+    const S t2 = __builtin_shuffle(r[2], r[3], Mask4{0, 4, 2, 6}), t3 = __builtin_shuffle(r[2], r[3], Mask4{1, 5, 3, 7});
+    g.f[0] = __builtin_shuffle(t0, t2, Mask4{0, 1, 4, 5});
+    g.f[1] = __builtin_shuffle(t1, t3, Mask4{0, 1, 4, 5});
+    g.f[2] = __builtin_shuffle(t0, t2, Mask4{2, 3, 6, 7});
+    g.f[3] = __builtin_shuffle(t1, t3, Mask4{2, 3, 6, 7});
+  } else if constexpr (width<S> == 2) {
+    for (int half = 0; half < 2; ++half) {
+      S r[2];
+      for (int l = 0; l < 2; ++l) r[l] = load<S>(records + static_cast<std::size_t>(stride) * index[l] + first + 2 * half);
+      g.f[2 * half] = __builtin_shuffle(r[0], r[1], Mask2{0, 2});
+      g.f[2 * half + 1] = __builtin_shuffle(r[0], r[1], Mask2{1, 3});
+    }
+  } else {
+    for (int k = 0; k < 4; ++k) g.f[k] = records[static_cast<std::size_t>(stride) * index[0] + first + k];
+  }
+  return g;
 }
 
 // A D-vector of lanes: component k holds W values (the pair terms' x_ab, v_ab, gradients).

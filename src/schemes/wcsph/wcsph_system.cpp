@@ -30,11 +30,7 @@ WcsphSystem<D, Kernel>::WcsphSystem(std::size_t particles, WcsphParams<D> params
   if (!(p_.h > 0) || !(p_.mass > 0) || !(p_.rho0 > 0) || !(p_.sound_speed > 0))
     throw std::invalid_argument("WcsphSystem: h, mass, rho0 and sound_speed must be positive");
   pressure_.assign(particles, 0);
-  p_over_rho2_.assign(particles, 0);
-  q_psi_.assign(particles, 0);
   div_v_.assign(particles, 0);
-  volume_.assign(particles, 0);
-  sound_speed_.assign(particles, 0);
   grad_rho_.assign(particles, Vec<D>::Zero());
 }
 
@@ -97,24 +93,32 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   const Real m = p_.mass, h = p_.h, c_h = p_.cleaning_speed();
   const Real dh_c = p_.delta * h * p_.sound_speed;
   const bool viscosity = p_.alpha > 0 && !subsystem;
-#pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) {
-    pressure_[a] = tait_pressure(rho[a], p_.rho0, p_.sound_speed);
-    p_over_rho2_[a] = pressure_[a] / (rho[a] * rho[a]);
-    volume_[a] = m / rho[a];
-    if (clean) q_psi_[a] = psi[a] / (rho[a] * rho[a]);  // Omega = 1 for constant h
-    if (viscosity) sound_speed_[a] = tait_sound_speed(rho[a], p_.rho0, p_.sound_speed);
-  }
-
+  using wcsph_detail::Record;
+  records_.resize(Record<D>::size * n);
   const bool corrected_diffusion = dh_c > 0 && p_.diffusion_correction && !subsystem;
   const NeighbourList& nl = search_.list();
   Real grad_scale = 1 / (h * h);
   for (int k = 0; k < D; ++k) grad_scale /= h;
-  const RowInput<D> in{x.data(), v.data(), rho.data(), volume_.data(), p_over_rho2_.data(), q_psi_.data(),
-                       sound_speed_.data(), grad_rho_.data()->data(), nl.indices.data(), nl.offsets.data(),
-                       MinimumImage<D>(search_.box()), m, h, 1 / h, grad_scale,
-                       Kernel::support * h * Kernel::support * h, p_.alpha,
+  const RowInput<D> in{records_.data(), nl.indices.data(), nl.offsets.data(), MinimumImage<D>(search_.box()),
+                       m, h, 1 / h, grad_scale, Kernel::support * h * Kernel::support * h, p_.alpha,
                        clean, subsystem, viscosity, dh_c > 0 && !subsystem, corrected_diffusion};
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < n; ++a) {
+    pressure_[a] = tait_pressure(rho[a], p_.rho0, p_.sound_speed);
+    Real* r = records_.data() + Record<D>::size * a;
+    for (int k = 0; k < D; ++k) {
+      r[Record<D>::x + k] = x(k, a);
+      r[Record<D>::v + k] = v(k, a);
+      r[Record<D>::grad_rho + k] = 0;
+    }
+    r[Record<D>::rho] = rho[a];
+    r[Record<D>::volume] = m / rho[a];
+    r[Record<D>::p_over_rho2] = pressure_[a] / (rho[a] * rho[a]);
+    r[Record<D>::q_psi] = clean ? psi[a] / (rho[a] * rho[a]) : 0;  // Omega = 1 for constant h
+    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho[a], p_.rho0, p_.sound_speed) : 0;
+    for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
+  }
+
   const Rows<D, Kernel> rows = rows_in_use<D, Kernel>();
   // The pairs inside the support: inside_count_[a] of them from inside_[start(a)] on, a row's
   // room its list length plus the padding a block may write past it.
@@ -129,7 +133,10 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   if (corrected_diffusion) {
     ScopedPhase timer(Phase::DensityH);
 #pragma omp parallel for schedule(static)
-    for (std::size_t a = 0; a < n; ++a) grad_rho_[a] = rows.gradient(in, a, row(a));
+    for (std::size_t a = 0; a < n; ++a) {
+      grad_rho_[a] = rows.gradient(in, a, row(a));
+      Eigen::Map<Vec<D>>(records_.data() + Record<D>::size * a + Record<D>::grad_rho) = grad_rho_[a];
+    }
   }
   Real max_acc2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : max_acc2)

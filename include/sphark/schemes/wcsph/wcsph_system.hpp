@@ -64,7 +64,8 @@ class WcsphSystem final : public OdeSystem {
   long builds_ = 0, rhs_calls_ = 0;
 
   // per particle, for the pair loops (src/schemes/wcsph/wcsph_pair_rows.hpp)
-  std::vector<Real> pressure_, p_over_rho2_, q_psi_, div_v_, volume_, sound_speed_;
+  std::vector<Real> pressure_, div_v_;
+  std::vector<Real> records_;  // per particle: the fields its neighbours read (wcsph_detail::Record)
   std::vector<std::uint32_t> inside_;    // per RHS: each row's neighbours inside the support (at its list offset)
   std::vector<std::size_t> inside_count_;
   std::vector<Vec<D>> grad_rho_;
