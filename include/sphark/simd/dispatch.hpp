@@ -19,5 +19,7 @@ PairLoopSimd use_pair_loop_simd(PairLoopSimd want);
 // The widest path this CPU and build have.
 PairLoopSimd widest_pair_loop_simd();
 std::string_view pair_loop_simd_name(PairLoopSimd s);
+// Lanes of the path: 1, 2, 4.
+constexpr int simd_lanes(PairLoopSimd s) { return s == PairLoopSimd::Avx2 ? 4 : s == PairLoopSimd::Sse2 ? 2 : 1; }
 
 }  // namespace sphark

@@ -147,8 +147,12 @@ struct Group {
 // W consecutive doubles at p (any 8-byte alignment) as one vector load.
 template <class S>
 inline S load(const Real* p) {
-  typedef Real Unaligned __attribute__((vector_size(sizeof(S)), aligned(8), may_alias));
-  return *reinterpret_cast<const Unaligned*>(p);
+  if constexpr (width<S> == 1) {
+    return *p;
+  } else {
+    typedef Real Unaligned __attribute__((vector_size(sizeof(S)), aligned(8), may_alias));
+    return *reinterpret_cast<const Unaligned*>(p);
+  }
 }
 template <class S>
 inline Group<S> gather_group(const Real* records, int stride, const std::uint32_t* index, int first) {
