@@ -208,6 +208,8 @@ struct LaneVec {
     return s;
   }
   S squaredNorm() const { return dot(*this); }
+  S norm() const { return simd::sqrt(squaredNorm()); }
+  static LaneVec Zero() { return zero(); }
   LaneVec& operator+=(const LaneVec& o) {
     for (int k = 0; k < D; ++k) c[k] += o.c[k];
     return *this;
@@ -246,6 +248,51 @@ inline LaneVec<S, D> operator*(Real s, LaneVec<S, D> a) {
 }
 template <class S, int D>
 inline LaneVec<S, D> operator*(LaneVec<S, D> a, S s) { return s * a; }
+
+// Lanes where the mask is set, zero elsewhere.
+template <class M, class S, int D>
+inline LaneVec<S, D> where(const M& mask, LaneVec<S, D> v) {
+  for (int k = 0; k < D; ++k) v.c[k] = mask ? v.c[k] : S{};
+  return v;
+}
+
+// The first D components.
+template <int D, class S, int N>
+inline LaneVec<S, D> head(const LaneVec<S, N>& v) {
+  LaneVec<S, D> h;
+  for (int k = 0; k < D; ++k) h.c[k] = v.c[k];
+  return h;
+}
+
+// A D x D matrix of lanes (the Maxwell stress of a pair loop), row-major.
+template <class S, int D>
+struct LaneMat {
+  S m[D][D];
+  LaneVec<S, D> operator*(const LaneVec<S, D>& g) const {
+    LaneVec<S, D> r;
+    for (int i = 0; i < D; ++i) {
+      r.c[i] = m[i][0] * g.c[0];
+      for (int j = 1; j < D; ++j) r.c[i] += m[i][j] * g.c[j];
+    }
+    return r;
+  }
+};
+
+// The scalar of a vector type: Eigen's Scalar, or a LaneVec's lane type.
+template <class V>
+struct ScalarOf {
+  using type = typename V::Scalar;
+};
+template <class S, int D>
+struct ScalarOf<LaneVec<S, D>> {
+  using type = S;
+};
+template <class V>
+using scalar_of = typename ScalarOf<V>::type;
+
+// Eigen's Vec<N> for Real, LaneVec for lanes (sums that tests also read as vectors).
+template <class S, int N>
+using VecOf = std::conditional_t<std::is_same_v<S, Real>, Vec<N>, LaneVec<S, N>>;
 
 }  // namespace sphark::simd
 
