@@ -14,7 +14,11 @@ std::atomic<int> in_use{kUndecided};
 
 PairLoopSimd widest() {
 #if defined(SPHARK_SIMD_HAVE_AVX2)
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return PairLoopSimd::Avx2;
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  if (avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512vl"))
+    return PairLoopSimd::Avx512;
+  if (avx2) return PairLoopSimd::Avx2;
 #endif
 #if defined(__SSE2__)
   return PairLoopSimd::Sse2;
@@ -33,6 +37,7 @@ PairLoopSimd from_environment() {
   if (s == nullptr) return widest();
   if (std::strcmp(s, "scalar") == 0) return PairLoopSimd::Scalar;
   if (std::strcmp(s, "sse2") == 0) return capped(PairLoopSimd::Sse2);
+  if (std::strcmp(s, "avx2") == 0) return capped(PairLoopSimd::Avx2);
   return widest();
 }
 }  // namespace
@@ -59,6 +64,7 @@ std::string_view pair_loop_simd_name(PairLoopSimd s) {
     case PairLoopSimd::Scalar: return "scalar";
     case PairLoopSimd::Sse2: return "sse2";
     case PairLoopSimd::Avx2: return "avx2";
+    case PairLoopSimd::Avx512: return "avx512";
   }
   return "unknown";
 }

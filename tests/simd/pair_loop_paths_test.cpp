@@ -1,5 +1,5 @@
-// The vector paths of the pair loops (simd/dispatch.hpp: SSE2, and AVX2 + FMA where the CPU has
-// it) against the scalar path, on a WCSPH drop (2D and 3D) and SPMHD states with every term on
+// The vector paths of the pair loops (simd/dispatch.hpp: SSE2, and AVX2 + FMA and AVX-512 where
+// the CPU has them) against the scalar path, on a WCSPH drop (2D and 3D) and SPMHD states with every term on
 // (2D Orszag-Tang, 3D disordered lattice): every derivative field agrees to round-off, and each
 // path gives the same result on 1 and 2 threads, bit for bit.
 //
@@ -38,7 +38,8 @@ struct PathGuard {
 
 std::vector<PairLoopSimd> vector_paths() {
   std::vector<PairLoopSimd> paths{PairLoopSimd::Sse2};
-  if (widest_pair_loop_simd() == PairLoopSimd::Avx2) paths.push_back(PairLoopSimd::Avx2);
+  for (PairLoopSimd p : {PairLoopSimd::Avx2, PairLoopSimd::Avx512})
+    if (static_cast<int>(p) <= static_cast<int>(widest_pair_loop_simd())) paths.push_back(p);
   return paths;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Lanes: W pair interactions computed at once, for the pair loops' vector paths. A lane type S is
 // Real (W = 1, the scalar path) or a GCC/Clang vector of W doubles (Real2: SSE2, the x86-64
-// baseline; Real4: AVX2, used only inside functions compiled for AVX2 and chosen at run time,
-// simd/dispatch.hpp). The arithmetic operators, comparisons (a mask per lane) and `m ? a : b`
+// baseline; Real4: AVX2 or AVX-512VL, used only inside functions compiled for those instruction
+// sets and chosen at run time, simd/dispatch.hpp). The arithmetic operators, comparisons (a mask per lane) and `m ? a : b`
 // (select per lane) are the language's on every lane type, so a pair term written once with them
 // serves every width; what the language lacks is here: broadcast, sqrt, min / max, positive
 // part, horizontal sum, the gather of a neighbour field, and LaneVec<S, D> (a D-vector of lanes,
@@ -92,7 +92,7 @@ __attribute__((target("avx2,fma"))) inline unsigned mask_bits(Mask4 m) {
 // For each mask of W lanes: its set lanes in order, and how many.
 template <int W>
 struct SetLanes {
-  alignas(16) std::uint32_t lane[1 << W][W] = {};
+  alignas(4 * W) std::uint32_t lane[1 << W][W] = {};
   std::uint8_t count[1 << W] = {};
   constexpr SetLanes() {
     for (unsigned bits = 0; bits < (1u << W); ++bits)
@@ -108,11 +108,11 @@ inline constexpr SetLanes<W> kSetLanes{};
 // shuffle of the four indices by the mask's table row (one vpermilps with AVX).
 template <int W>
 inline std::size_t append_lanes(unsigned bits, const std::uint32_t* b, std::uint32_t* out, std::size_t n) {
+  typedef std::uint32_t U4 __attribute__((vector_size(16)));
+  typedef std::uint32_t U4u __attribute__((vector_size(16), aligned(4), may_alias));
   if constexpr (W == 4) {
-    typedef std::uint32_t U4 __attribute__((vector_size(16)));
-    typedef std::uint32_t U4u __attribute__((vector_size(16), aligned(4), may_alias));
-    const U4 packed = __builtin_shuffle(*reinterpret_cast<const U4u*>(b), *reinterpret_cast<const U4*>(kSetLanes<4>.lane[bits]));
-    *reinterpret_cast<U4u*>(out + n) = packed;
+    *reinterpret_cast<U4u*>(out + n) =
+        __builtin_shuffle(*reinterpret_cast<const U4u*>(b), *reinterpret_cast<const U4*>(kSetLanes<4>.lane[bits]));
   } else {
     for (int l = 0; l < W; ++l) out[n + l] = b[kSetLanes<W>.lane[bits][l]];
   }

@@ -135,6 +135,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
   using spmhd_detail::DensitySums;
   DensitySums (*sums)(const Real*, const Real*, std::size_t, Real, Real) = spmhd_detail::density_sums<Real, D, K>;
+  if (pair_loop_simd() == PairLoopSimd::Avx512) sums = spmhd_detail::density_sums_avx512<D, K>;
   if (pair_loop_simd() == PairLoopSimd::Avx2) sums = spmhd_detail::density_sums_avx2<D, K>;
   if (pair_loop_simd() == PairLoopSimd::Sse2) sums = spmhd_detail::density_sums<simd::Real2, D, K>;
   std::size_t not_converged = 0, outside = 0, iterations = 0;
@@ -155,7 +156,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         const std::size_t j = L.indices[k];
         const Real r2 = image(x + D * i, x + D * j).squaredNorm();
         if (r2 >= r_list2) continue;
-        const std::size_t l = perm_[j] & (lanes - 1), c = count[l]++ * lanes + l;  // lanes: 1, 2 or 4
+        const std::size_t l = perm_[j] & (lanes - 1), c = count[l]++ * lanes + l;  // lanes: 1, 2, 4 or 8
         rc[c] = std::sqrt(r2);
         mc[c] = m[j];
       }

@@ -1,6 +1,6 @@
 #pragma once
 // The density sum of the SPMHD h solve over a particle's gathered candidates, in lanes of W
-// (simd/lanes.hpp; S = Real the scalar path, Real2 SSE2, Real4 AVX2 + FMA in
+// (simd/lanes.hpp; S = Real the scalar path, Real2 SSE2, Real4 AVX2 + FMA or AVX-512VL in
 // spmhd_rows_avx2.cpp, chosen at run time). seed 000, eq. (4) and its h-derivative at unit h:
 //   s0 = sum_b m_b w1(q_b),   s1 = sum_b m_b (D w1(q_b) + q_b^2 f1(q_b)),   q_b = r_b / h,
 // with the self term (q = 0) first: rho = s0 / h^D, drho/dh = -s1 / h^(D+1). The candidate
@@ -39,9 +39,11 @@ inline DensitySums density_sums(const Real* r, const Real* m, std::size_t n, Rea
   return {simd::sum(s0), simd::sum(s1)};
 }
 
-// (spmhd_rows_avx2.cpp) Call only when the CPU has AVX2 and FMA.
+// (spmhd_rows_avx2.cpp) Call only when the CPU has AVX2 and FMA, or AVX-512.
 template <int D, class K>
 DensitySums density_sums_avx2(const Real* r, const Real* m, std::size_t n, Real h_inv, Real self_mass);
+template <int D, class K>
+DensitySums density_sums_avx512(const Real* r, const Real* m, std::size_t n, Real h_inv, Real self_mass);
 
 }  // namespace sphark::spmhd_detail
 

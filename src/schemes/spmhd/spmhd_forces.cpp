@@ -122,6 +122,7 @@ using PairRow = PairSums<D> (*)(const spmhd_detail::RowInput<D>&, std::size_t, s
 template <int D, class K>
 PairRow<D, K> pair_row_in_use() {
   switch (pair_loop_simd()) {
+    case PairLoopSimd::Avx512: return spmhd_detail::pair_row_avx512<D, K>;
     case PairLoopSimd::Avx2: return spmhd_detail::pair_row_avx2<D, K>;
     case PairLoopSimd::Sse2: return spmhd_detail::pair_row<simd::Real2, D, K>;
     case PairLoopSimd::Scalar: break;

@@ -1,7 +1,7 @@
 #pragma once
 // The SPMHD pair loop (seed 000, §II) for one particle a, in lanes of W neighbours
 // (simd/lanes.hpp): S = Real is the scalar path, simd::Real2 the SSE2 path, simd::Real4 the
-// AVX2 + FMA path (spmhd_rows_avx2.cpp; chosen at run time, simd/dispatch.hpp). The pair terms
+// AVX2 + FMA (or AVX-512VL) path (spmhd_rows_avx2.cpp; chosen at run time, simd/dispatch.hpp). The pair terms
 // are the operators of sphark/operators/, each citing its equation, written once for every width.
 //
 // The row is first compacted to the interacting neighbours (|x_ab| < support max(h_a, h_b),
@@ -253,9 +253,11 @@ inline PairSums<D> pair_row(const RowInput<D>& in, std::size_t a, std::uint32_t*
   return sums.summed(n);
 }
 
-// (spmhd_rows_avx2.cpp) Call only when the CPU has AVX2 and FMA.
+// (spmhd_rows_avx2.cpp) Call only when the CPU has AVX2 and FMA, or AVX-512.
 template <int D, class K>
 PairSums<D> pair_row_avx2(const RowInput<D>& in, std::size_t a, std::uint32_t* inside);
+template <int D, class K>
+PairSums<D> pair_row_avx512(const RowInput<D>& in, std::size_t a, std::uint32_t* inside);
 
 }  // namespace sphark::spmhd_detail
 

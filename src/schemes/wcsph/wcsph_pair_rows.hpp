@@ -211,13 +211,19 @@ inline ForceRow<D> force_row(const RowInput<D>& in, std::size_t a, InsideRow row
   return {acc.sum(), simd::sum(continuity), simd::sum(diffusion)};
 }
 
-// The AVX2 + FMA rows (wcsph_pair_rows_avx2.cpp): call only when the CPU has both.
+// The AVX2 + FMA and AVX-512VL rows (wcsph_pair_rows_avx2.cpp): call only when the CPU has them.
 template <int D>
 std::size_t neighbours_inside_avx2(const RowInput<D>& in, std::size_t a, std::uint32_t* inside);
 template <int D, class K>
 Vec<D> density_gradient_row_avx2(const RowInput<D>& in, std::size_t a, InsideRow row);
 template <int D, class K>
 ForceRow<D> force_row_avx2(const RowInput<D>& in, std::size_t a, InsideRow row);
+template <int D>
+std::size_t neighbours_inside_avx512(const RowInput<D>& in, std::size_t a, std::uint32_t* inside);
+template <int D, class K>
+Vec<D> density_gradient_row_avx512(const RowInput<D>& in, std::size_t a, InsideRow row);
+template <int D, class K>
+ForceRow<D> force_row_avx512(const RowInput<D>& in, std::size_t a, InsideRow row);
 
 }  // namespace sphark::wcsph_detail
 

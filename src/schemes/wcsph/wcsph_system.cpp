@@ -60,6 +60,8 @@ template <int D, class K>
 Rows<D, K> rows_in_use() {
   using namespace wcsph_detail;
   switch (pair_loop_simd()) {
+    case PairLoopSimd::Avx512:
+      return {neighbours_inside_avx512<D>, density_gradient_row_avx512<D, K>, force_row_avx512<D, K>};
     case PairLoopSimd::Avx2:
       return {neighbours_inside_avx2<D>, density_gradient_row_avx2<D, K>, force_row_avx2<D, K>};
     case PairLoopSimd::Sse2:
