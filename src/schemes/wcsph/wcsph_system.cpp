@@ -38,9 +38,20 @@ template <int D, class Kernel>
 void WcsphSystem<D, Kernel>::update_neighbours(const Real* x) {
   const Real support = Kernel::support * p_.h;
   const Real skin = p_.skin_fraction * support;
+  const std::size_t n = layout_.particles();
   ScopedPhase timer(Phase::Neighbours);
-  if (built_ && search_.max_displacement_since_build(x) < 0.5 * skin) return;
-  search_.build(x, layout_.particles(), support + skin);
+  if (built_) {  // the lists hold slots: the displacement check sees the positions in slot order
+    x_slots_.resize(D * n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t s = 0; s < n; ++s)
+      for (int k = 0; k < D; ++k) x_slots_[D * s + k] = x[D * slot_particle_[s] + k];
+    if (search_.max_displacement_since_build(x_slots_.data()) < 0.5 * skin) return;
+  }
+  // Lists of the particles (rows ascending in particle number), then slots in cell order: slot
+  // s is particle slot_particle_[s], and the rows keep their order (sums do not depend on slots).
+  search_.build(x, n, support + skin);
+  slot_particle_ = search_.cell_order();
+  search_.renumber(slot_particle_);
   built_ = true;
   ++builds_;
 }
@@ -104,20 +115,22 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   const RowInput<D> in{records_.data(), nl.indices.data(), nl.offsets.data(), MinimumImage<D>(search_.box()),
                        m, h, 1 / h, grad_scale, Kernel::support * h * Kernel::support * h, p_.alpha,
                        clean, subsystem, viscosity, dh_c > 0 && !subsystem, corrected_diffusion};
+  const std::uint32_t* particle = slot_particle_.data();
 #pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) {
-    pressure_[a] = tait_pressure(rho[a], p_.rho0, p_.sound_speed);
+  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
+    const std::size_t p = particle[a];
+    pressure_[p] = tait_pressure(rho[p], p_.rho0, p_.sound_speed);
     Real* r = records_.data() + Record<D>::size * a;
     for (int k = 0; k < D; ++k) {
-      r[Record<D>::x + k] = x(k, a);
-      r[Record<D>::v + k] = v(k, a);
+      r[Record<D>::x + k] = x(k, p);
+      r[Record<D>::v + k] = v(k, p);
       r[Record<D>::grad_rho + k] = 0;
     }
-    r[Record<D>::rho] = rho[a];
-    r[Record<D>::volume] = m / rho[a];
-    r[Record<D>::p_over_rho2] = pressure_[a] / (rho[a] * rho[a]);
-    r[Record<D>::q_psi] = clean ? psi[a] / (rho[a] * rho[a]) : 0;  // Omega = 1 for constant h
-    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho[a], p_.rho0, p_.sound_speed) : 0;
+    r[Record<D>::rho] = rho[p];
+    r[Record<D>::volume] = m / rho[p];
+    r[Record<D>::p_over_rho2] = pressure_[p] / (rho[p] * rho[p]);
+    r[Record<D>::q_psi] = clean ? psi[p] / (rho[p] * rho[p]) : 0;  // Omega = 1 for constant h
+    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho[p], p_.rho0, p_.sound_speed) : 0;
     for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
   }
 
@@ -142,15 +155,16 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   }
   Real max_acc2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : max_acc2)
-  for (std::size_t a = 0; a < n; ++a) {
+  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
     const ForceRow<D> sums = rows.forces(in, a, row(a));
+    const std::size_t p = particle[a];
     Vec<D> acc = sums.acc;
-    div_v_[a] = -sums.continuity / rho[a];  // eq. (36)
-    if (!subsystem && p_.body_force) acc += p_.body_force(Vec<D>(x.col(a)));
-    dv.col(a) = acc;
-    dx.col(a) = subsystem ? Vec<D>::Zero() : Vec<D>(v.col(a));
-    drho[a] = subsystem ? 0.0 : sums.continuity + dh_c * sums.diffusion;  // eq. (28) + delta-SPH
-    if (clean) dpsi[a] = -c_h * c_h * rho[a] * div_v_[a] - p_.cleaning_rate() * psi[a];  // eq. (30)
+    div_v_[p] = -sums.continuity / rho[p];  // eq. (36)
+    if (!subsystem && p_.body_force) acc += p_.body_force(Vec<D>(x.col(p)));
+    dv.col(p) = acc;
+    dx.col(p) = subsystem ? Vec<D>::Zero() : Vec<D>(v.col(p));
+    drho[p] = subsystem ? 0.0 : sums.continuity + dh_c * sums.diffusion;  // eq. (28) + delta-SPH
+    if (clean) dpsi[p] = -c_h * c_h * rho[p] * div_v_[p] - p_.cleaning_rate() * psi[p];  // eq. (30)
     max_acc2 = std::max(max_acc2, acc.squaredNorm());
   }
   max_accel_ = std::sqrt(max_acc2);
