@@ -2,6 +2,7 @@
 // least work, and where does each one fail? Work-precision matrix + stability limits of the
 // time steppers on one scene. See README.md in this folder.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -12,7 +13,9 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/visualise.hpp"
+#include "sphark/run/cost_estimate.hpp"
 #include "sphark/run/signals.hpp"
+#include "sphark/run/time_loop.hpp"  // kStepFloorFraction
 #include "study.hpp"
 
 using namespace sphark;
@@ -45,6 +48,58 @@ std::vector<std::string> method_list(const OptionParser& p, const std::string& o
   return out;
 }
 
+// The study runs its scene many times over: a scene that would not fit in memory is refused
+// before it is built (run/cost_estimate.hpp). Every study scene is 2D on a unit domain, so its
+// particles scale as spacing^-2: a probe at the spacing of ~kProbeParticles particles measures
+// them and the bytes per particle of its reference run.
+void check_study_size(const OptionParser& p, const std::string& scene_name, const StudySceneOptions& so,
+                      const StudySettings& s) {
+  const Real probe_spacing = std::sqrt(kPi / kProbeParticles);
+  if (!(so.spacing > 0) || so.spacing >= probe_spacing) return;
+  StudySceneOptions po = so;
+  po.spacing = probe_spacing;
+  const std::unique_ptr<StudyScene> probe_scene = make_study_scene(scene_name, po);
+  const ProbeMeasurement m = measure_probe([&] {
+    ProbeSubject subject;
+    std::shared_ptr<StudyProblem> problem = probe_scene->build();
+    subject.system = &problem->system();
+    subject.y0 = problem->y0();
+    subject.stepper = study_stepper_options(s.reference, *problem, *probe_scene, s.limits);
+    subject.particles = problem->system().state_layout() ? problem->system().state_layout()->particles() : 0;
+    subject.owner = problem;
+    return subject;
+  }, probe_scene->t_end());
+  const CostEstimate e = estimate_memory(m.particles * (probe_spacing / so.spacing) * (probe_spacing / so.spacing), m);
+  if (!e.fits()) p.fail("--spacing", memory_refusal(e));
+}
+
+// Fixed steps below the step floor (kStepFloorFraction x t_end) would never end: refused.
+void check_fixed_steps(const OptionParser& p, const StudyScene& scene, const StudySettings& s) {
+  const Real floor = kStepFloorFraction * scene.t_end();
+  const auto check = [&](const char* option, const std::vector<Real>& cfls) {
+    for (Real cfl : cfls)
+      if (!(cfl * scene.cfl_unit() >= floor)) {
+        char why[200];
+        std::snprintf(why, sizeof why, "CFL %.3g gives dt=%.3g, below the step floor %.3g (%.0e x --t-end %.3g)", cfl,
+                      cfl * scene.cfl_unit(), floor, kStepFloorFraction, scene.t_end());
+        p.fail(option, why);
+      }
+  };
+  if (!s.fixed_methods.empty()) check("--fixed-cfls", s.fixed_cfls);
+  if (!s.leapfrog_methods.empty()) check("--leapfrog-cfls", s.leapfrog_cfls);
+  // the reference run (and every capped case) takes steps of at most cap_cfl x the CFL unit
+  check("--cap-cfl", {s.limits.cap_cfl});
+  // a stability trial takes horizon / dt whole steps, down to CFL min_cfl
+  const Real horizon = s.stability.horizon > 0 ? s.stability.horizon : scene.t_end();
+  const Real steps = horizon / (s.stability.min_cfl * scene.cfl_unit());
+  if (s.stability_run && !(steps <= 1 / kStepFloorFraction)) {
+    char why[200];
+    std::snprintf(why, sizeof why, "%.3g: a trial at CFL %.3g would take %.3g steps (at most %.0e)", horizon,
+                  s.stability.min_cfl, steps, 1 / kStepFloorFraction);
+    p.fail("--stability-horizon", why);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -70,7 +125,7 @@ int main(int argc, char** argv) {
   p.add("--out", &out, "output directory (default out/stepper_study/<scene>)", "DIR");
   p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles, disc 0.08 = 484, orszag_tang 1/16 = 16 x 18)", NonNegative{});
   p.add("--t-end", &so.t_end, "end time (0: scene default; drop 0.025, disc 10, orszag_tang 0.5)", NonNegative{});
-  p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default: drop 25, disc 20, orszag_tang 10)", NonNegative{});
+  p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default: drop 25, disc 20, orszag_tang 10)", Range{0, 10000});
   p.add("--what", &what, "what to run", OneOf{{"all", "matrix", "stability"}});
   p.add("--methods", &adaptive, "adaptive methods (ERK tables with an embedding, ark-imex), comma-separated; 'none'");
   p.add("--modes", &modes, "adaptive modes: capped (dt <= cap-cfl x CFL unit), uncapped, or both", OneOf{{"capped", "uncapped", "capped,uncapped"}});
@@ -116,21 +171,23 @@ int main(int argc, char** argv) {
   if (out.empty()) out = std::filesystem::path("out/stepper_study") / scene_name;
   s.out = out;
 
+  threads = apply_thread_count(threads, p.program());
   std::unique_ptr<StudyScene> scene;
   try {
+    check_study_size(p, scene_name, so, s);
     scene = make_study_scene(scene_name, so);
   } catch (const std::exception& e) {
     exit_usage_error(p.program(), "--scene", e.what());
   }
-  apply_thread_count(threads);
+  check_fixed_steps(p, *scene, s);
   run_profile().enable(profile);
   prepare_output_dir(s.out, p.program());
-  install_stop_handlers();  // SIGINT/SIGTERM: finish the current case, keep the rows so far
+  install_stop_handlers();  // SIGINT/SIGTERM: stop the current case (no row), keep the rows so far
   const auto start = std::chrono::steady_clock::now();
   std::printf("stepper_study: %s; CFL unit h/(c+|v|) = %.4g; output %s\n", scene->description().c_str(), scene->cfl_unit(),
               s.out.c_str());
   try {
-    if (s.matrix && !run_work_precision(*scene, s)) return 1;
+    if (s.matrix && !run_work_precision(*scene, s)) return 3;  // the reference run failed (as a failed run: exit 3)
     if (s.stability_run) run_stability(*scene, s);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stepper_study: %s\n", e.what());

@@ -30,13 +30,15 @@ struct StudySettings {
 };
 
 // Writes <out>/work_precision.csv (rewritten atomically as each case finishes) and
-// <out>/reference.csv (the reference run and its check). Stops between cases after
-// SIGINT/SIGTERM (signals.hpp). Returns false if the reference failed.
+// <out>/reference.csv (the reference run and its check). After SIGINT/SIGTERM (signals.hpp) the
+// case in progress stops at its next RHS evaluation, without a row. Returns false if the
+// reference failed.
 bool run_work_precision(const StudyScene& scene, const StudySettings& s);
 // Why `method` cannot run on the scene (leapfrog without moving particles, ark-imex without a
 // stiff part), or "" if it can.
 std::string unsupported(const StudyScene& scene, const std::string& method);
-// Writes <out>/stability.csv (atomically, row by row; stops between methods after a signal).
+// Writes <out>/stability.csv (atomically, row by row; a signal stops the bisection in progress,
+// which leaves no row).
 void run_stability(const StudyScene& scene, const StudySettings& s);
 
 }  // namespace sphark

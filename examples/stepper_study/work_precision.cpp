@@ -1,6 +1,7 @@
 // The work-precision matrix: every method x tolerance (adaptive, with and without the CFL cap)
 // and every fixed CFL number, against the exact solution and against a reference run. Tables
-// are rewritten atomically after every row; SIGINT/SIGTERM stop between cases; --resume keeps
+// are rewritten atomically after every row; SIGINT/SIGTERM stop the case in progress at its next
+// RHS evaluation (it leaves no row); --resume keeps
 // the rows of an earlier run and skips their cases.
 #include <cmath>
 #include <csignal>
@@ -129,11 +130,13 @@ bool run_work_precision(const StudyScene& scene, const StudySettings& s) {
   std::printf("reference: %s rtol %.0e (check: %s rtol %.0e)\n", s.reference.method.c_str(), s.reference.rtol,
               s.reference_check.method.c_str(), s.reference_check.rtol);
   const StudyResult ref = run_study_case(scene, s.reference, s.limits);
+  if (ref.status == "stopped") return true;  // SIGINT/SIGTERM: main reports it
   if (!ref.ok()) {
     std::fprintf(stderr, "stepper_study: reference run failed: %s %s\n", ref.status.c_str(), ref.failure.c_str());
     return false;
   }
   const StudyResult check = run_study_case(scene, s.reference_check, s.limits);
+  if (check.status == "stopped") return true;
   Table ref_csv(s.out / "reference.csv", kWorkPrecisionHeader, false, row_key);
   const StudyErrors ref_err = study_errors(scene, ref, ref);
   ref_csv.add(row_text(scene, s.reference, ref, ref_err));
@@ -152,6 +155,7 @@ bool run_work_precision(const StudyScene& scene, const StudySettings& s) {
       return true;
     }
     const StudyResult r = run_study_case(scene, c, s.limits);
+    if (r.status == "stopped") return false;  // cut short: no row (--resume runs it again)
     const StudyErrors e = study_errors(scene, r, ref);
     print(c, r, e);
     csv.add(row_text(scene, c, r, e));
@@ -183,7 +187,12 @@ void run_stability(const StudyScene& scene, const StudySettings& s) {
       std::printf("stability %-32s skipped: %s\n", m.c_str(), why.c_str());
       continue;
     }
-    const StabilityLimit L = find_stability_limit(scene, m, s.stability);
+    StabilityLimit L;
+    try {
+      L = find_stability_limit(scene, m, s.stability);
+    } catch (const StopRequested&) {
+      return;  // a trial was cut short: no row for this method
+    }
     std::printf("stability %-32s CFL stable %.4g unstable %.4g  (%d trials, cpu %.1f s)  %s\n", m.c_str(), L.cfl_stable,
                 L.cfl_unstable, L.trials, L.cpu_seconds, L.unstable_reason.c_str());
     std::fflush(stdout);

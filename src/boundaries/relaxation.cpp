@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "sphark/kernels/kernels.hpp"
+#include "sphark/run/signals.hpp"
 
 namespace sphark {
 
@@ -96,6 +97,7 @@ RelaxReport relax_uniform(std::vector<Real>& x, const PeriodicBox<D>& box, const
   search.build(x.data(), n, H + skin);
   std::vector<Real> nd(n), dx(D * n);
   for (int it = 0;; ++it) {
+    throw_if_stop_requested();  // SIGINT/SIGTERM (run/signals.hpp): a long relaxation ends here
     if (search.max_displacement_since_build(x.data()) > 0.5 * skin) search.build(x.data(), n, H + skin);
     node_density(search, x.data(), n, rep.h, nd.data());
     const Stats<D> st = stats<D>(nd);

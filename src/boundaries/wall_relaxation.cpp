@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "sphark/kernels/kernels.hpp"
+#include "sphark/run/signals.hpp"
 
 namespace sphark {
 
@@ -30,6 +31,7 @@ RelaxReport relax_near_wall(std::vector<Real>& x, const Wall<D>& wall, GhostMap 
   const PeriodicBox<D>* bp = box ? &*box : nullptr;
 
   for (int it = 0;; ++it) {
+    throw_if_stop_requested();  // SIGINT/SIGTERM (run/signals.hpp): a long relaxation ends here
     ghosts.clear();
     ghosts.append(wall, x.data(), nullptr, n, gopt, bp);
     all.assign(x.begin(), x.end());

@@ -1,6 +1,7 @@
 // The options every example takes, the output-directory check and the thread count.
 #include <omp.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -52,20 +53,40 @@ StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, st
   StepperOptions s = stepper_options(o);
   if (s.method == "ark-imex" && !system.has_stiff_diagonal()) {
     s.method = "ARKODE_DORMAND_PRINCE_7_4_5";
-    std::fprintf(stderr, "%.*s: --stepper ark-imex: this run has no stiff part (no psi damping); using %s\n",
+    if (!program.empty())
+      std::fprintf(stderr, "%.*s: --stepper ark-imex: this run has no stiff part (no psi damping); using %s\n",
                  static_cast<int>(program.size()), program.data(), s.method.c_str());
   }
   return s;
 }
 
 void limit_to_t_end(const OptionParser& p, std::string_view option, Real& value, Real t_end) {
-  if (value <= t_end) return;
-  if (p.was_given(option)) p.fail(option, "must not exceed --t-end");
-  value = t_end;
+  const Real least = t_end / kMaxOutputs;
+  if (value > t_end) {
+    if (p.was_given(option)) p.fail(option, "must not exceed --t-end");
+    value = t_end;
+  } else if (value > 0 && value < least) {
+    char why[160];
+    std::snprintf(why, sizeof why, "%.3g gives more than %.0e outputs up to --t-end %.3g (at least %.3g)", value,
+                  kMaxOutputs, t_end, least);
+    if (p.was_given(option)) p.fail(option, why);
+    value = least;
+  }
 }
 
-void apply_thread_count(int threads) {
-  if (threads > 0) omp_set_num_threads(threads);
+int apply_thread_count(int threads, std::string_view program) {
+  const int cores = std::max(1, omp_get_num_procs());
+  const int wanted = threads > 0 ? threads : omp_get_max_threads();
+  if (wanted <= cores) {
+    if (threads > 0) omp_set_num_threads(threads);
+    return wanted;
+  }
+  const std::string what = threads > 0 ? "--threads " + std::to_string(threads)
+                                        : "OMP_NUM_THREADS=" + std::to_string(wanted);
+  std::fprintf(stderr, "%.*s: %s: more than the %d core%s of this machine; using %d\n", static_cast<int>(program.size()),
+               program.data(), what.c_str(), cores, cores > 1 ? "s" : "", cores);
+  omp_set_num_threads(cores);
+  return cores;
 }
 
 namespace {

@@ -43,11 +43,13 @@ SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<D, K>& s, Real t, const Real* y) 
       d.kinetic_energy += 0.5 * m[a] * v2;
     }
     if (u) d.thermal_energy += m[a] * u[a];
+    else if (const BarotropicEos* eos = s.barotropic_eos()) d.thermal_energy += m[a] * eos->specific_energy(rho);
     if (psi && s.options().local_ch) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho);  // state psi / c_h,a
     else if (psi && ch > 0) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho * ch * ch);
   }
   if (counted > 0) d.mean_h_divb_over_b /= static_cast<Real>(counted);
-  d.total_energy = d.kinetic_energy + d.magnetic_energy + d.thermal_energy + d.psi_energy;
+  d.potential_energy = s.potential_energy();
+  d.total_energy = d.kinetic_energy + d.magnetic_energy + d.thermal_energy + d.psi_energy + d.potential_energy;
   d.cleaning_speed = ch;
   return d;
 }

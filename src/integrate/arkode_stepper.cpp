@@ -140,7 +140,48 @@ bool ArkodeStepper::recover(int& consecutive) {
   return true;
 }
 
-AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
+bool ArkodeStepper::interrupt_now() noexcept {
+  if (interrupted_) return true;
+  if (!opts_.interrupt) return false;
+  try {
+    interrupted_ = opts_.interrupt();
+  } catch (...) {
+    interrupted_ = true;  // a poll that cannot answer stops the run rather than letting it run on
+  }
+  return interrupted_;
+}
+
+// The next advance() after an interrupt: ARKODE restarts at the last accepted step, with that
+// step's size as its first (the failed step attempt left its memory mid-step).
+void ArkodeStepper::restart_after_interrupt() {
+  realtype h_initial = 0, h_last = 0, h_current = 0, t_current = 0;
+  long steps = 0;
+  api_.get_step_stats(mem_, &steps, &h_initial, &h_last, &h_current, &t_current);
+  auto y = view(y_last_.size(), y_last_.data());
+  check(api_.reset(mem_, t_last_, y.get()), "Reset");
+  if (!(opts_.fixed_dt > 0) && h_last > 0) check(api_.set_init_step(mem_, h_last), "SetInitStep");
+  restart_pending_ = false;
+}
+
+// Failed or Interrupted: the state after the last accepted step is the one returned.
+AdvanceStatus ArkodeStepper::end_at_last_accepted(Real* y, Real& t, AdvanceStatus status) {
+  y_last_ = y_accepted_;
+  t_last_ = t_accepted_;
+  std::copy(y_last_.begin(), y_last_.end(), y);
+  t = t_last_;
+  return status;
+}
+
+std::string ArkodeStepper::failure_text(int flag, Real t, int consecutive) const {
+  if (!floor_failure_.empty()) return floor_failure_;
+  std::string why = flag_name(flag) + " (" + std::to_string(flag) + ") at t=" + at_time(t) + ": " + arkode_message_;
+  if (!callback_error_.empty()) why += "; " + callback_error_;
+  if (below_min_dt_) why += "; the reduced step would fall below min_dt=" + at_time(opts_.min_dt);
+  if (consecutive > kMaxRecoveries) why += "; gave up after " + std::to_string(kMaxRecoveries) + " step reductions";
+  return why;
+}
+
+AdvanceStatus ArkodeStepper::evolve_to(Real t_out, Real* y, Real& t, int itask) {
   ScopedPhase timer(Phase::Advance);
   const std::size_t n = system_.size();
   roots_.clear();
@@ -150,6 +191,9 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     t = t_last_;
     return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
   }
+  interrupted_ = false;
+  if (restart_pending_) restart_after_interrupt();
+  t_out_ = t_out;
   auto yout = view(n, y);
   try {
     bound_step(t_out);
@@ -165,30 +209,25 @@ AdvanceStatus ArkodeStepper::advance(Real t_out, Real* y, Real& t) {
     callback_error_.clear();
     arkode_message_.clear();
     evolved_ = true;
-    const int flag = api_.evolve(mem_, t_out, yout.get(), &t, ARK_NORMAL);
+    const int flag = api_.evolve(mem_, t_out, yout.get(), &t, itask);
     if (flag >= 0) {
       std::copy(y, y + n, y_last_.begin());
       t_last_ = t;
-      if (flag != ARK_ROOT_RETURN) return AdvanceStatus::Reached;
+      if (flag != ARK_ROOT_RETURN) return t < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
       roots_.assign(static_cast<std::size_t>(system_.num_roots()), 0);
       check(api_.get_root_info(mem_, roots_.data()), "GetRootInfo");
       return AdvanceStatus::RootFound;
+    }
+    if (interrupted_) {  // the RHS callback refused to evaluate: a stop request
+      restart_pending_ = true;
+      return end_at_last_accepted(y, t, AdvanceStatus::Interrupted);
     }
     const bool rhs_flag = flag == ARK_UNREC_RHSFUNC_ERR || flag == ARK_REPTD_RHSFUNC_ERR ||
                           flag == ARK_FIRST_RHSFUNC_ERR;
     if (rhs_flag && last_code_ > 0 && recover(consecutive)) continue;
     failed_ = true;
-    failure_ = flag_name(flag) + " (" + std::to_string(flag) + ") at t=" +
-               at_time(t) + ": " + arkode_message_;
-    if (!callback_error_.empty()) failure_ += "; " + callback_error_;
-    if (below_min_dt_) failure_ += "; the reduced step would fall below min_dt=" + at_time(opts_.min_dt);
-    if (consecutive > kMaxRecoveries)
-      failure_ += "; gave up after " + std::to_string(kMaxRecoveries) + " step reductions";
-    y_last_ = y_accepted_;
-    t_last_ = t_accepted_;
-    std::copy(y_last_.begin(), y_last_.end(), y);
-    t = t_last_;
-    return AdvanceStatus::Failed;
+    failure_ = failure_text(flag, t, consecutive);
+    return end_at_last_accepted(y, t, AdvanceStatus::Failed);
   }
 }
 
@@ -256,8 +295,24 @@ int ArkodeStepper::roots_cb(realtype t, N_Vector y, realtype* g, void* self) {
   return s->guarded("roots", t, [&] { return s->system_.roots(t, N_VGetArrayPointer(y), g); });
 }
 
+// After every accepted step: a step that does not advance t, or the kStepsBelowFloor-th in a row
+// below the step floor (a step landing on t_out does not count), ends the run with the state before it (returning non-zero
+// makes ARKODE stop with ARK_POSTPROCESS_STEP_FAIL before it counts the step).
 int ArkodeStepper::step_done_cb(realtype t, N_Vector y, void* self) {
   auto* s = static_cast<ArkodeStepper*>(self);
+  const Real dt = t - s->t_accepted_;
+  if (t != s->t_out_) s->steps_below_floor_ = s->opts_.step_floor > 0 && dt < s->opts_.step_floor ? s->steps_below_floor_ + 1 : 0;
+  const bool below_floor = s->steps_below_floor_ >= kStepsBelowFloor;
+  if (!(t > s->t_accepted_) || below_floor) {
+    try {
+      s->floor_failure_ = "a step of dt=" + at_time(dt) + " at t=" + at_time(s->t_accepted_) +
+                          (below_floor ? ": " + std::to_string(kStepsBelowFloor) + " steps in a row below the step floor " +
+                                             at_time(s->opts_.step_floor)
+                                       : " does not advance t (t + dt == t)");
+    } catch (...) {
+    }
+    return 1;
+  }
   const Real* data = N_VGetArrayPointer(y);
   std::copy(data, data + s->y_accepted_.size(), s->y_accepted_.begin());
   s->t_accepted_ = t;

@@ -39,7 +39,8 @@ struct ArkodeApi {
 
 class ArkodeStepper : public Stepper {
  public:
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override;
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return evolve_to(t_out, y, t, ARK_NORMAL); }
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override { return evolve_to(t_out, y, t, ARK_ONE_STEP); }
   StepperStats stats() const override;
   std::string failure_reason() const override { return failure_; }
   std::vector<int> roots_found() const override { return roots_; }
@@ -64,6 +65,10 @@ class ArkodeStepper : public Stepper {
     return v;
   }
 
+  // StepperOptions::interrupt, polled by the RHS callbacks before they evaluate: true (the
+  // callback then returns -1 and advance() reports Interrupted). Never throws.
+  bool interrupt_now() noexcept;
+
   // Runs a system call inside a C callback: exceptions become -1, non-zero codes are recorded.
   template <class F>
   int guarded(const char* what, Real t, F&& call) noexcept {
@@ -87,11 +92,16 @@ class ArkodeStepper : public Stepper {
   void* mem_ = nullptr;       // owned by the derived class (ErkMemPtr / ArkMemPtr)
 
  private:
+  // ARKODE's evolve to t_out (itask ARK_NORMAL: all the way; ARK_ONE_STEP: one internal step).
+  AdvanceStatus evolve_to(Real t_out, Real* y, Real& t, int itask);
   void record(const char* what, Real t, int code) noexcept;
   void record_exception(const char* what, Real t, const char* message) noexcept;
   void bound_step(Real t_out);
   void set_tolerances();
   bool recover(int& consecutive);
+  void restart_after_interrupt();
+  AdvanceStatus end_at_last_accepted(Real* y, Real& t, AdvanceStatus status);
+  std::string failure_text(int flag, Real t, int consecutive) const;
   void check(int flag, const char* call) const;
   std::string flag_name(int flag) const;
   static int roots_cb(realtype t, N_Vector y, realtype* g, void* self);
@@ -106,6 +116,11 @@ class ArkodeStepper : public Stepper {
   Real t_accepted_ = 0;
   bool fixed_step_reduced_ = false;
   bool below_min_dt_ = false;  // the last recover() stopped at StepperOptions::min_dt
+  bool interrupted_ = false;   // StepperOptions::interrupt stopped the current advance()
+  bool restart_pending_ = false;  // interrupted: the ARKODE memory restarts at the last accepted step
+  std::string floor_failure_;  // a step below StepperOptions::step_floor (or not advancing t) ended the run
+  Real t_out_ = 0;             // of the current advance() (its landing step may be a sliver)
+  int steps_below_floor_ = 0;  // consecutive accepted steps below StepperOptions::step_floor
   Real step_cap_ = 0;  // max step of an adaptive run during the current advance()
   int last_code_ = 0;         // last non-zero return of a system callback
   std::string callback_error_;

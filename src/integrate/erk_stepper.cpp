@@ -53,6 +53,7 @@ class ErkStepper final : public ArkodeStepper {
 
   static int rhs_cb(realtype t, N_Vector y, N_Vector ydot, void* self) {
     auto* s = static_cast<ErkStepper*>(self);
+    if (s->interrupt_now()) return -1;  // a stop request: advance() reports Interrupted
     return s->guarded("rhs", t, [&] {
       return s->system_.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
     });

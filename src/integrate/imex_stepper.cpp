@@ -104,6 +104,7 @@ class ImexStepper final : public ArkodeStepper {
   // f_E = f + c∘y
   static int explicit_cb(realtype t, N_Vector y, N_Vector ydot, void* self) {
     auto* s = static_cast<ImexStepper*>(self);
+    if (s->interrupt_now()) return -1;  // a stop request: advance() reports Interrupted
     const Real* yv = N_VGetArrayPointer(y);
     Real* f = N_VGetArrayPointer(ydot);
     const int code = s->guarded("rhs", t, [&] { return s->system_.rhs(t, yv, f); });

@@ -62,12 +62,18 @@ class LeapfrogStepper final : public Stepper {
     mark_blocks();
   }
 
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override {
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return steps_to(t_out, y, t, false); }
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override { return steps_to(t_out, y, t, true); }
+
+  // Steps towards t_out: all the way, or one (single).
+  AdvanceStatus steps_to(Real t_out, Real* y, Real& t, bool single) {
     ScopedPhase timer(Phase::Advance);
     roots_.clear();
     if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
     if (!failed_ && !started_) start();
-    while (!failed_ && t_ < t_out) {
+    interrupted_ = false;
+    for (bool first = true; !failed_ && t_ < t_out && (first || !single); first = false) {
+      if (interrupt_now()) break;
       Real dt = choose_dt();
       if (failed_) break;
       bool lands = t_ + dt * (1 + 1e-10) >= t_out;  // no sliver steps before t_out
@@ -80,12 +86,14 @@ class LeapfrogStepper final : public Stepper {
           finish(y, t);
           return AdvanceStatus::RootFound;
         }
-        if (failed_) break;
+        if (failed_ || interrupted_) break;  // (an interrupted root search keeps the state before the trial step)
       }
       accept(dt, lands ? t_out : NAN);
     }
     finish(y, t);
-    return failed_ ? AdvanceStatus::Failed : AdvanceStatus::Reached;
+    if (failed_) return AdvanceStatus::Failed;
+    if (interrupted_) return AdvanceStatus::Interrupted;
+    return t < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
   }
 
   StepperStats stats() const override {
@@ -150,15 +158,35 @@ class LeapfrogStepper final : public Stepper {
   }
 
   Real choose_dt() {
-    if (opts_.fixed_dt > 0) return opts_.fixed_dt;
-    // the derivative at y_ that the next kick uses (FSAL: from the predictor of the last step)
-    Real dt = opts_.cfl_safety * system_.max_stable_dt(t_, y_.data(), dy_.data());
-    if (opts_.max_dt > 0) dt = std::min(dt, opts_.max_dt);
-    if (!(dt > 0) || !std::isfinite(dt)) {
-      const std::string why = system_.last_error();
-      fail("no usable step size (cfl_safety * max_stable_dt = " + at_time(dt) + ")" + (why.empty() ? "" : ": " + why));
+    Real dt = opts_.fixed_dt;
+    if (!(dt > 0)) {
+      // the derivative at y_ that the next kick uses (FSAL: from the predictor of the last step)
+      dt = opts_.cfl_safety * system_.max_stable_dt(t_, y_.data(), dy_.data());
+      if (opts_.max_dt > 0) dt = std::min(dt, opts_.max_dt);
+      if (!(dt > 0) || !std::isfinite(dt)) {
+        const std::string why = system_.last_error();
+        fail("no usable step size (cfl_safety * max_stable_dt = " + at_time(dt) + ")" + (why.empty() ? "" : ": " + why));
+        return dt;
+      }
     }
+    steps_below_floor_ = opts_.step_floor > 0 && dt < opts_.step_floor ? steps_below_floor_ + 1 : 0;
+    if (!(t_ + dt > t_)) fail("a step of dt=" + at_time(dt) + " does not advance t (t + dt == t)");
+    else if (steps_below_floor_ >= kStepsBelowFloor)
+      fail("a step of dt=" + at_time(dt) + ": " + std::to_string(kStepsBelowFloor) + " steps in a row below the step floor " +
+           at_time(opts_.step_floor));
     return dt;
+  }
+
+  // StepperOptions::interrupt (a stop request); never throws.
+  bool interrupt_now() {
+    if (!interrupted_ && opts_.interrupt) {
+      try {
+        interrupted_ = opts_.interrupt();
+      } catch (...) {
+        interrupted_ = true;
+      }
+    }
+    return interrupted_;
   }
 
   int step(Real dt) {
@@ -236,7 +264,7 @@ class LeapfrogStepper final : public Stepper {
     Real tau = dt;
     for (std::size_t k = 0; k < g_.size() && !failed_; ++k)
       if (crossed(g_[k], g_end[k])) tau = std::min(tau, illinois(k, dt, g_end[k]));
-    if (failed_) return false;
+    if (failed_ || interrupted_) return false;
     if (step(tau) != 0) return fail("RHS during root location"), false;
     if (!eval_roots(t_ + tau)) return false;
     roots_.assign(g_.size(), 0);
@@ -265,6 +293,7 @@ class LeapfrogStepper final : public Stepper {
     const Real tol = 100 * std::numeric_limits<Real>::epsilon() * (std::abs(t_) + dt);
     int side = 0;
     for (int it = 0; it < kMaxRootIterations && hi - lo > tol && g_hi != 0; ++it) {
+      if (interrupt_now()) return hi;
       const Real tau = std::clamp(hi - g_hi * (hi - lo) / (g_hi - g_lo), lo + 0.25 * tol, hi - 0.25 * tol);
       if (step(tau) != 0) return fail("RHS during root location"), dt;
       if (!eval_roots(t_ + tau)) return dt;
@@ -341,7 +370,8 @@ class LeapfrogStepper final : public Stepper {
   std::vector<int> roots_;
   StepperStats stats_;
   std::string failure_, callback_error_;
-  bool started_ = false, failed_ = false;
+  bool started_ = false, failed_ = false, interrupted_ = false;
+  int steps_below_floor_ = 0;  // consecutive steps below StepperOptions::step_floor
   bool resume_pending_ = true;  // opts_.resume_data still applies (no resize before the start)
 };
 

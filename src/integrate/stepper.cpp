@@ -118,35 +118,14 @@ std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const Stepper
 
 }  // namespace detail
 
-namespace {
-// A stepper together with the guard it integrates through (one guard per run, see
-// integrate/guarded_system.hpp): owns both, forwards everything to the inner stepper.
-class GuardedStepper final : public Stepper {
- public:
-  GuardedStepper(std::unique_ptr<GuardedSystem> guard, std::unique_ptr<Stepper> inner)
-      : guard_(std::move(guard)), inner_(std::move(inner)) {}
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return inner_->advance(t_out, y, t); }
-  StepperStats stats() const override { return inner_->stats(); }
-  std::string failure_reason() const override { return inner_->failure_reason(); }
-  std::vector<Real> resume_data() const override { return inner_->resume_data(); }
-  std::vector<int> roots_found() const override { return inner_->roots_found(); }
-  void resize(const Resized& state) override { inner_->resize(state); }
-  std::vector<Real> carried_data() const override { return inner_->carried_data(); }
-
- private:
-  std::unique_ptr<GuardedSystem> guard_;  // outlives inner_ (declared first, destroyed last)
-  std::unique_ptr<Stepper> inner_;
-};
-}  // namespace
-
 // The guard checks each rank's own state; a distributed run agrees on its answers around it.
 std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                       const Real* y0) {
-  auto guard = std::make_unique<GuardedSystem>(system);
+  auto guard = std::make_unique<GuardedSystem>(system);  // one guard per run
   guard->inject_nan_from(opts.inject_nan_from);
   auto inner = opts.communicator.distributed() ? detail::make_distributed_stepper(*guard, opts, t0, y0)
                                                : detail::make_validated_stepper(*guard, opts, t0, y0);
-  return std::make_unique<GuardedStepper>(std::move(guard), std::move(inner));
+  return std::make_unique<detail::WrapperOwningStepper>(std::move(guard), std::move(inner));
 }
 
 void Stepper::resize(const Resized&) {

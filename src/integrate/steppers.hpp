@@ -17,6 +17,26 @@ bool is_imex_pair(const std::string& name);
 std::unique_ptr<Stepper> make_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts,
                                                Real t0, const Real* y0);
 
+// A stepper built on a system wrapper that it owns (the guard, the collective system): forwards
+// everything to the inner stepper; the wrapper outlives it.
+class WrapperOwningStepper final : public Stepper {
+ public:
+  WrapperOwningStepper(std::unique_ptr<OdeSystem> wrapper, std::unique_ptr<Stepper> inner)
+      : wrapper_(std::move(wrapper)), inner_(std::move(inner)) {}
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return inner_->advance(t_out, y, t); }
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override { return inner_->step(t_out, y, t); }
+  StepperStats stats() const override { return inner_->stats(); }
+  std::string failure_reason() const override { return inner_->failure_reason(); }
+  std::vector<Real> resume_data() const override { return inner_->resume_data(); }
+  std::vector<int> roots_found() const override { return inner_->roots_found(); }
+  void resize(const Resized& state) override { inner_->resize(state); }
+  std::vector<Real> carried_data() const override { return inner_->carried_data(); }
+
+ private:
+  std::unique_ptr<OdeSystem> wrapper_;  // declared first: destroyed after inner_
+  std::unique_ptr<Stepper> inner_;
+};
+
 // make_stepper after the option checks (collective in a distributed run), on `system` as given.
 std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                                 const Real* y0);

@@ -1,5 +1,7 @@
 #include "sphark/neighbours/neighbour_search.hpp"
 
+#include "sphark/neighbours/displacement.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -231,14 +233,7 @@ void NeighbourSearch<D>::query(const Vec<D>& p, Real radius, std::vector<std::ui
 
 template <int D>
 Real NeighbourSearch<D>::max_displacement_since_build(const Real* x) const {
-  Real m2 = 0;
-#pragma omp parallel for reduction(max : m2) schedule(static)
-  for (std::size_t i = 0; i < n_; ++i) {
-    Vec<D> d = Eigen::Map<const Vec<D>>(x + D * i) - Eigen::Map<const Vec<D>>(points_.data() + D * i);
-    if (box_) d = box_->minimum_image(d);
-    m2 = std::max(m2, d.squaredNorm());
-  }
-  return std::sqrt(m2);
+  return max_displacement<D>(x, points_.data(), n_, box_);
 }
 
 template class NeighbourSearch<1>;

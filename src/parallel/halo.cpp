@@ -156,7 +156,8 @@ void HaloPlan<D>::build(const Real* x, const Real* r, const std::int64_t* ids, s
   for (std::size_t k = 0; k < send_index_.size(); ++k) std::memcpy(&send_buffer_[k], &ids[send_index_[k]], sizeof(Real));
   receive_buffer_.resize(std::max(receive_buffer_.size(), halo_ids_.size()));
   exchange_bytes(1);
-  std::memcpy(halo_ids_.data(), receive_buffer_.data(), halo_ids_.size() * sizeof(std::int64_t));
+  if (!halo_ids_.empty())
+    std::memcpy(halo_ids_.data(), receive_buffer_.data(), halo_ids_.size() * sizeof(std::int64_t));
   x_built_.assign(x, x + D * n);
   r_built_.assign(r, r + n);
   stats_.send_partners = static_cast<int>(send_ranks_.size());

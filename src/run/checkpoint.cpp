@@ -235,7 +235,8 @@ void save_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
 Checkpoint load_checkpoint(const std::filesystem::path& path) {
   const std::string where = "checkpoint '" + path.string() + "': ";
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error(where + "no such file");
+  if (!std::filesystem::exists(path, ec)) throw std::runtime_error(where + "no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error(where + "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(where + "cannot open: " + std::strerror(errno));
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -5,6 +5,7 @@
 #include "sphark/run/time_loop.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -83,6 +84,32 @@ void check_run_options(const OptionParser& p, RunControlOptions& o, CoreOptions&
   // alone is a valid short run)
   limit_to_t_end(p, "--output-every", core.output_every, core.t_end);
   limit_to_t_end(p, "--checkpoint-every", o.checkpoint_every, core.t_end);
+  check_step_option(p, core);
+}
+
+void check_step_option(const OptionParser& p, const CoreOptions& core) {
+  if (!(core.dt > 0)) return;
+  const Real floor = kStepFloorFraction * core.t_end;
+  char why[256];
+  if (!(core.t_end + core.dt > core.t_end))
+    std::snprintf(why, sizeof why, "%.3g does not advance t at --t-end %.3g (t + dt == t); the step floor is %.3g (%.0e x --t-end)",
+                  core.dt, core.t_end, floor, kStepFloorFraction);
+  else if (core.dt < floor)
+    std::snprintf(why, sizeof why, "%.3g is below the step floor %.3g (%.0e x --t-end: a run of more than %.0e steps)",
+                  core.dt, floor, kStepFloorFraction, 1 / kStepFloorFraction);
+  else
+    return;
+  p.fail("--dt", why);
+}
+
+std::optional<std::string> checkpoint_number_problem(const Checkpoint& c) {
+  char why[160];
+  if (!std::isfinite(c.t) || c.t < 0) return std::snprintf(why, sizeof why, "time %g is not a time of a run", c.t), why;
+  if (!std::isfinite(c.last_dt) || c.last_dt < 0)
+    return std::snprintf(why, sizeof why, "last step %g is not a step", c.last_dt), why;
+  for (const auto& [name, v] : c.scalars)
+    if (!std::isfinite(v)) return "its number '" + name + "' is " + std::to_string(v);
+  return std::nullopt;
 }
 
 std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program) {
@@ -97,6 +124,7 @@ std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv,
   }
   if (c.program != program)
     exit_usage_error(program, "--restart", "'" + *file + "' was written by " + c.program + ", not " + program);
+  if (const auto why = checkpoint_number_problem(c)) exit_usage_error(program, "--restart", "'" + *file + "': " + *why);
   return c;
 }
 
@@ -133,8 +161,8 @@ void check_restart_t_end(const OptionParser& p, const Checkpoint& c, Real t_end)
   p.fail("--t-end", why);
 }
 
-void start_run(const CoreOptions& core, std::string_view program) {
-  apply_thread_count(core.threads);
+void start_run(CoreOptions& core, std::string_view program) {
+  core.threads = apply_thread_count(core.threads, program);
   run_profile().enable(core.profile);
   prepare_output_dir(core.out, program);
   install_stop_handlers();

@@ -5,10 +5,14 @@
 #include <optional>
 #include <stdexcept>
 
+#include <map>
+
+#include "scene_cost.hpp"
 #include "sphark/cli/run_record.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/scene.hpp"
+#include "sphark/run/signals.hpp"
 
 namespace sphark {
 
@@ -36,6 +40,7 @@ struct ParsedRun {
   RunControlOptions control;
   std::vector<std::string> runs;
   std::vector<std::string> stored_options;  // argv[1..] of this run (a restart's stored ones first)
+  std::map<std::string, detail::PlannedCost> costs;  // per run: its probe (cost estimate)
 };
 
 void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* restart) {
@@ -58,6 +63,8 @@ void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* 
     check_restart_t_end(parser, *restart, r.core.t_end);
   }
   r.stored_options.assign(args.begin() + 1, args.end());
+  r.core.threads = apply_thread_count(r.core.threads, scene.program());  // the probes run on the run's threads
+  for (const std::string& name : r.runs) r.costs[name] = detail::plan_cost(scene, name, r.core, parser);
 }
 
 TimeLoopSettings default_settings(const Scene& scene, const std::string& name, const ParsedRun& p,
@@ -78,29 +85,40 @@ TimeLoopSettings default_settings(const Scene& scene, const std::string& name, c
   return ts;
 }
 
-TimeLoopHooks hooks_of(SceneRun& run) {
+TimeLoopHooks hooks_of(SceneRun& run, SetupWatchdog& watchdog) {
   TimeLoopHooks h;
+  h.started = [&watchdog] { watchdog.disarm(); };  // the set-up is over: a stop now gets a checkpoint
   h.diagnostics = [&run](Real t, const Real* y, const StepperStats& st) { return run.diagnostics(t, y, st); };
   h.frame = [&run](Real t, const Real* y) { return run.frame(t, y); };
   h.finished = [&run](Real t) { return run.finished(t); };
   h.root = [&run](Real t, const std::vector<int>& found) { return run.root(t, found); };
   h.state = run.saved_numbers();
+  if (run.changes_particles()) {
+    h.after_step = [&run](Real t, const Real* y) { return run.after_step(t, y); };
+    h.restart_layout = [&run](const Checkpoint& c) { return run.restart_layout(c); };
+  }
   return h;
 }
 
 // One run through the time loop; its exit status (report_time_loop_end) and, if not ok, why.
-int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Checkpoint* restart, std::string& why) {
+int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Checkpoint* restart, std::string& why,
+            SetupWatchdog& watchdog) {
   const std::filesystem::path dir = p.core.out / scene.subdirectory(name);
   prepare_output_dir(dir, scene.program());
+  watchdog.arm();  // until the time loop's stepper exists
   std::unique_ptr<SceneRun> run = scene.make_run(name, p.core);
-  const TimeLoopHooks hooks = hooks_of(*run);
+  const TimeLoopHooks hooks = hooks_of(*run, watchdog);
   TimeLoopSettings ts = default_settings(scene, name, p, dir, restart, *run);
   run->settings(ts);
   const StepperOptions so = run->stepper(p.core, scene.program());
-  std::fprintf(stderr, "%s: %s run, %zu particles, %s -> %s\n", scene.program().c_str(), name.c_str(),
-               run->layout().particles(), describe(so).c_str(), dir.c_str());
   // A restart takes its state from the checkpoint: the initial conditions are not built.
   std::vector<Real> y0 = restart ? std::vector<Real>(run->layout().size(), 0.0) : run->initial_state();
+  const detail::PlannedCost& cost = p.costs.at(name);
+  if (cost.known && (!restart || restart->y.size() == y0.size()))
+    std::fprintf(stderr, "%s\n", detail::first_line(scene.program(), name, cost, *run, so, restart ? restart->t : 0,
+                                                      restart ? restart->y.data() : y0.data(), p.core.t_end).c_str());
+  std::fprintf(stderr, "%s: %s run, %zu particles, %s -> %s\n", scene.program().c_str(), name.c_str(),
+               run->layout().particles(), describe(so).c_str(), dir.c_str());
   const TimeLoopResult result = run_time_loop(run->system(), run->layout(), so, std::move(y0), ts, hooks);
   std::printf("%s %s: %s\n", scene.program().c_str(), name.c_str(), format_stats(result.stats).c_str());
   scene.finished(name, *run, result);
@@ -122,6 +140,11 @@ int run_scene_main(Scene& scene, int argc, char** argv) {
   parse(p, scene, argc, argv, restart ? &*restart : nullptr);
   start_run(p.core, program);
   RunRecord record = start_run_record(p.parser, p.core.out);  // run.json: options, version, start
+  // A stop during a set-up without a poll: no state to checkpoint, the record says so.
+  SetupWatchdog watchdog([&](int sig) {
+    std::fprintf(stderr, "%s: stopped by signal %d during the set-up (no state to checkpoint yet)\n", program.c_str(), sig);
+    record.finish_with_exit_code(128 + sig, "stopped by signal " + std::to_string(sig) + " during the set-up");
+  });
   if (restart) {
     record.set("restart", restart->text("run") + " from t = " + std::to_string(restart->t));
     record.write();
@@ -132,17 +155,25 @@ int run_scene_main(Scene& scene, int argc, char** argv) {
     std::vector<std::string> done;
     std::string why;
     for (const std::string& name : p.runs) {
-      status = run_one(scene, name, p, restart ? &*restart : nullptr, why);
+      status = run_one(scene, name, p, restart ? &*restart : nullptr, why, watchdog);
       done.push_back(name);
       if (status != 0) break;  // a stop signal (checkpoint written) or a failure (last good state written)
     }
     write_paraview_states(scene, p.core.out, done);
     const int report = scene.report(p.core, p.runs, status == 0);
     return record.finish_with_exit_code(status != 0 ? status : report, why);
+  } catch (const StopRequested& stop) {  // a set-up loop's poll
+    watchdog.disarm();
+    std::fprintf(stderr, "%s: stopped by signal %d during the set-up (no state to checkpoint yet)\n", program.c_str(),
+                 stop.signal);
+    return record.finish_with_exit_code(128 + stop.signal, "stopped by signal " + std::to_string(stop.signal) +
+                                                               " during the set-up");
   } catch (const std::invalid_argument& e) {
+    watchdog.disarm();
     record.finish_with_exit_code(2, e.what());
     exit_usage_error(program, "", e.what());
   } catch (const std::exception& e) {
+    watchdog.disarm();
     std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
     return record.finish_with_exit_code(1, e.what());
   }

@@ -52,9 +52,27 @@ struct CountBase {
   }
 };
 
+// Advances to t_out: in one call, or (with hooks.after_step) step by step, resizing the state and
+// the stepper when the hook asks for it.
+AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_out, std::vector<Real>& y, Real& t,
+                         StateLayout& layout) {
+  if (!hooks.after_step) return stepper.advance(t_out, y.data(), t);
+  for (;;) {
+    const AdvanceStatus st = stepper.step(t_out, y.data(), t);
+    if (st != AdvanceStatus::Stepped && st != AdvanceStatus::Reached) return st;
+    if (std::optional<TimeLoopHooks::Resize> r = hooks.after_step(t, y.data())) {
+      if (r->y.size() != r->layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
+      layout = std::move(r->layout);
+      y = std::move(r->y);
+      stepper.resize({y.data(), r->atol.empty() ? nullptr : r->atol.data(), nullptr});
+    }
+    if (st == AdvanceStatus::Reached) return st;
+  }
+}
+
 }  // namespace
 
-TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, StepperOptions opts, std::vector<Real> y0,
+TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
                              const TimeLoopSettings& s, const TimeLoopHooks& hooks) {
   if (!(s.sample_every > 0)) throw std::invalid_argument("run_time_loop: sample_every must be positive");
   if (!hooks.diagnostics) throw std::invalid_argument("run_time_loop: no diagnostics hook");
@@ -82,17 +100,20 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
   binds.insert(binds.end(), hooks.state.begin(), hooks.state.end());
 
   std::vector<Real> y = std::move(y0);
+  StateLayout layout = initial_layout;  // changes when after_step resizes the state
   if (y.size() != layout.size()) throw std::invalid_argument("run_time_loop: initial state does not fit the layout");
   Real t = 0;
   if (s.restart) {
     const Checkpoint& c = *s.restart;
+    if (hooks.restart_layout) layout = hooks.restart_layout(c);
     if (auto why = layout_mismatch(c, layout)) throw std::runtime_error("--restart: " + *why);
     y = c.y;
     t = c.t;
     for (auto& [name, ptr] : binds) *ptr = c.scalar(name);
     // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
     // new grid from the checkpoint time on.
-    if (c.scalar("sample_every") != s.sample_every) sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
+    if (c.scalar("sample_every") != s.sample_every || !(sample * s.sample_every > t))  // (the latter: a corrupt index)
+      sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
     if (c.scalar("frame_every") != frame_every) next_frame = (std::floor(t / frame_every * (1 + 1e-12)) + 1) * frame_every;
     if (c.scalar("checkpoint_every") != s.checkpoint_every && s.checkpoint_every > 0)
       next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
@@ -107,8 +128,11 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     const Real scale = std::isfinite(stable) && stable > 0 ? std::min(stable, s.sample_every) : s.sample_every;
     opts.min_dt = s.min_dt_fraction * scale;
   }
+  if (opts.step_floor <= 0) opts.step_floor = s.step_floor_fraction * t_end;
+  if (!opts.interrupt) opts.interrupt = [] { return stop_requested() != 0; };
   if (s.inject_nan_at > 0) opts.inject_nan_from = s.inject_nan_at;
   auto stepper = make_stepper(system, opts, t, y.data());
+  if (hooks.started) hooks.started();
   const auto stats = [&] { return base.total(stepper->stats()); };
 
   const auto save = [&](Real time) {
@@ -163,7 +187,13 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
       break;
     }
     const Real t_out = std::min(t_end, sample * s.sample_every);
-    const AdvanceStatus st = stepper->advance(t_out, y.data(), t);
+    const AdvanceStatus st = advance_to(*stepper, hooks, t_out, y, t, layout);
+    if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
+      res.status = TimeLoopStatus::Stopped;
+      res.signal = stop_requested();
+      save(t);
+      break;
+    }
     if (st == AdvanceStatus::Failed) {  // y, t: the last good state
       res.status = TimeLoopStatus::Failed;
       res.failure = stepper->failure_reason();
@@ -190,7 +220,11 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
     record(t);
     if (hooks.finished && hooks.finished(t)) res.status = TimeLoopStatus::EndedEarly;
     if (s.checkpoint_every > 0 && t >= next_checkpoint - 1e-12 * t_end) {
-      while (next_checkpoint <= t + 1e-12 * t_end) next_checkpoint += s.checkpoint_every;
+      if ((t - next_checkpoint) / s.checkpoint_every < 1e3) {
+        while (next_checkpoint <= t + 1e-12 * t_end) next_checkpoint += s.checkpoint_every;
+      } else {  // an interval far below the sampling: one jump, not a loop per interval passed
+        next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
+      }
       save(t);
     }
     if (!s.quiet) progress.update(t, stats().steps, stepper->stats().last_dt);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sphark/run/signals.hpp"
+
 namespace sphark {
 
 StabilityLimit find_stability_limit(const StudyScene& scene, const std::string& method, const StabilitySettings& s) {
@@ -28,6 +30,7 @@ StabilityLimit find_stability_limit(const StudyScene& scene, const std::string& 
       if (limits.times.empty() || n * dt > limits.times.back()) limits.times.push_back(static_cast<Real>(n) * dt);
     }
     const StudyResult r = run_study_case(scene, {method, StudyMode::Fixed, 0, cfl}, limits);
+    if (r.status == "stopped") throw StopRequested{stop_requested()};  // no limit from a cut-short trial
     out.cpu_seconds += r.cpu_seconds;
     reason = r.status + (r.failure.empty() ? "" : ": " + r.failure);
     return r.ok() || r.status == "budget";

@@ -7,6 +7,8 @@
 #include <limits>
 
 #include "sphark/integrate/stepper.hpp"
+#include "sphark/run/signals.hpp"
+#include "sphark/run/time_loop.hpp"  // kStepFloorFraction
 
 namespace sphark {
 
@@ -48,7 +50,10 @@ StudyResult run_study_case(const StudyScene& scene, const StudyCase& c, const St
   const Real e0 = check_energy ? problem->energy(0.0, y.data()) : 0;
   double cpu = 0;
   try {
-    auto stepper = make_stepper(sys, study_stepper_options(c, *problem, scene, limits), 0.0, y.data());
+    StepperOptions so = study_stepper_options(c, *problem, scene, limits);
+    so.interrupt = [] { return stop_requested() != 0; };  // SIGINT/SIGTERM: the case ends at its next RHS
+    so.step_floor = kStepFloorFraction * scene.t_end();
+    auto stepper = make_stepper(sys, so, 0.0, y.data());
     Real t = 0;
     for (Real t_out : times) {
       const std::clock_t start = std::clock();
@@ -56,6 +61,11 @@ StudyResult run_study_case(const StudyScene& scene, const StudyCase& c, const St
       cpu += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
       r.stats = stepper->stats();
       r.t_reached = t;
+      if (st == AdvanceStatus::Interrupted) {
+        r.status = "stopped";
+        r.failure = "stopped by signal " + std::to_string(stop_requested());
+        break;
+      }
       if (st == AdvanceStatus::Failed) {
         r.status = "failed";
         r.failure = stepper->failure_reason();

@@ -7,17 +7,12 @@
 
 #include "sphark/neighbours/neighbour_search.hpp"
 
+#include "../support/random_points.hpp"
+
 using namespace sphark;
 
 namespace {
-template <int D>
-std::vector<Real> random_points(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<Real> u(0.0, 1.0);
-  std::vector<Real> x(D * n);
-  for (auto& v : x) v = u(rng);
-  return x;
-}
+using test::random_points;
 
 template <int D>
 void expect_matches_brute_force(const NeighbourSearch<D>& ns, const std::vector<Real>& x, Real r) {

@@ -48,7 +48,8 @@ std::vector<Real> random_points(std::size_t n, const PeriodicBox<D>& box, unsign
 template <int D>
 std::vector<Real> jittered_lattice(std::size_t n, const PeriodicBox<D>& box, Real jitter, unsigned seed);
 
-// Relaxes x (D x n, modified in place) in the fully periodic box.
+// Relaxes x (D x n, modified in place) in the fully periodic box. Throws StopRequested
+// (run/signals.hpp) at the next iteration after SIGINT/SIGTERM.
 template <int D>
 RelaxReport relax_uniform(std::vector<Real>& x, const PeriodicBox<D>& box, const RelaxOptions& opt = {});
 

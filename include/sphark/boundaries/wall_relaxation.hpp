@@ -19,7 +19,8 @@ namespace sphark {
 
 // x: D x n positions inside the wall's fluid side. movable[i] != 0 for particles that move.
 // box: periodic axes that are physical (e.g. the cylinder's axis), nullopt if none.
-// Stops when std(n)/<n> over the movable particles <= opt.tolerance or after max_iterations.
+// Stops when std(n)/<n> over the movable particles <= opt.tolerance or after max_iterations;
+// throws StopRequested (run/signals.hpp) at the next iteration after SIGINT/SIGTERM.
 template <int D>
 RelaxReport relax_near_wall(std::vector<Real>& x, const Wall<D>& wall, GhostMap map, Real h,
                             const std::vector<char>& movable, const std::optional<PeriodicBox<D>>& box,

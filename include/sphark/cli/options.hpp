@@ -183,17 +183,24 @@ std::vector<std::string> core_stepper_names();
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt.
 StepperOptions stepper_options(const CoreOptions& o);
 // The same for one run of `system`: when --stepper ark-imex meets a run without a stiff part
-// (e.g. no psi damping), says so in one line on stderr and uses ARKODE_DORMAND_PRINCE_7_4_5
-// for that run (a scene that runs several variants keeps going; nothing is switched silently).
+// (e.g. no psi damping), says so in one line on stderr (unless `program` is empty) and uses
+// ARKODE_DORMAND_PRINCE_7_4_5 for that run (a scene that runs several variants keeps going;
+// nothing is switched silently).
 StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, std::string_view program);
 
-// An interval option (e.g. --output-every) that must not exceed --t-end: a value the user gave
-// (was_given) that does is an error, "<option>: must not exceed --t-end" and exit 2; a default
-// that does follows the shorter run and becomes t_end.
+// An interval option (e.g. --output-every; 0 = off) that must lie in [t_end / kMaxOutputs, t_end]:
+// a value the user gave (was_given) outside it is an error ("<option>: must not exceed --t-end",
+// "<option>: ... more than 1e6 outputs ...", exit 2); a default outside it follows the run
+// (t_end for a short run, t_end / kMaxOutputs for a long one).
+inline constexpr Real kMaxOutputs = 1e6;
 void limit_to_t_end(const OptionParser& p, std::string_view option, Real& value, Real t_end);
 
-// Sets the OpenMP thread count if threads > 0.
-void apply_thread_count(int threads);
+// Sets the OpenMP thread count and returns it: `threads`, or OpenMP's default (OMP_NUM_THREADS)
+// for 0, clamped to the cores this process may use (omp_get_num_procs(): its affinity mask) with
+// one warning line "<program>: --threads 100000: more than the 2 cores of this machine; using 2".
+// (Unclamped, libgomp 12 puts a record per thread on the stack when it starts a team: 100000
+// threads overflow the 8 MB stack, a segmentation fault.)
+int apply_thread_count(int threads, std::string_view program = "sphark");
 
 // Why `dir` cannot be used as an output directory (after trying to create it and its parents
 // and to write a probe file in it), or nullopt if it is fine.

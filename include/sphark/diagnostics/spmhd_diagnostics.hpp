@@ -17,7 +17,8 @@ struct SpmhdDiagnostics {
   Real magnetic_energy = 0;   // sum m B^2 / (2 rho)
   Real thermal_energy = 0;    // sum m u
   Real psi_energy = 0;        // sum m psi^2 / (2 rho c_h^2), seed 000 eq. (17)
-  Real total_energy = 0;      // the sum of the four above
+  Real potential_energy = 0;  // self-gravity: (1/2) sum m Phi (0 without gravity)
+  Real total_energy = 0;      // the sum of the five above
   std::array<Real, 3> momentum{0, 0, 0};
   Real cleaning_speed = 0;
 };

@@ -10,7 +10,13 @@
 // cfl_safety * system.max_stable_dt(t, y), evaluated at the start of every advance() call (a
 // finite CFL limit is respected per output interval; StepperOptions::cap_by_stability = false
 // lifts this bound). Fixed-step runs take fixed_dt (the last step of an interval is shortened
-// to land on t_out).
+// to land on t_out). kStepsBelowFloor consecutive steps below StepperOptions::step_floor, or
+// one step that leaves t unchanged (t + dt == t), end the run as Failed (the state before that
+// step is the last good state).
+//
+// Interrupts: StepperOptions::interrupt is polled before every RHS evaluation (ARKODE: in the
+// RHS callback, which then fails the step attempt; the leapfrog: also before every step and
+// every root-location trial), so a stop signal ends advance() within one RHS evaluation.
 //
 // Recoverable RHS failures (return > 0): ARKODE 6.4.1 ERKStep/ARKStep turn them into
 // ARK_UNREC_RHSFUNC_ERR for explicit stages, so the ERK/IMEX stepper restarts (xxxStepReset)
@@ -46,16 +52,25 @@
 
 namespace sphark {
 
-enum class AdvanceStatus { Reached, RootFound, Failed };
+// Stepped: step() took one step and t is still before t_out.
+// Interrupted: StepperOptions::interrupt said so (a stop signal); y, t hold the last accepted
+// step. A later advance() continues from there (the ARKODE steppers restart their memory at that
+// step with the last step size as the first one; the leapfrog goes on as if never interrupted).
+enum class AdvanceStatus { Reached, RootFound, Failed, Stepped, Interrupted };
 
 class Stepper {  // one object per run; owns all SUNDIALS objects it uses (RAII)
  public:
   virtual ~Stepper() = default;
   // Advance to t_out. y (size system.size()) receives the state at t: t == t_out unless a root
-  // was found (RootFound) or the integration failed (Failed: y, t = last good state).
+  // was found (RootFound), the integration failed (Failed: y, t = last good state) or was
+  // interrupted (Interrupted: y, t = last accepted step).
   // The stepper keeps its own state: the content of y on entry is ignored.
   // Throws std::invalid_argument if t_out is before the current time.
   virtual AdvanceStatus advance(Real t_out, Real* y, Real& t) = 0;
+  // One step towards t_out (landing on it, never past it): Stepped with t < t_out, Reached at
+  // t_out, or RootFound / Failed as advance(). Between two calls the caller may inspect y and
+  // resize(). The step-size bounds of advance() are taken at every call. (Default: advance().)
+  virtual AdvanceStatus step(Real t_out, Real* y, Real& t) { return advance(t_out, y, t); }
   virtual StepperStats stats() const = 0;
   // After Failed: flag name + message, time, and system.last_error().
   virtual std::string failure_reason() const = 0;

@@ -1,5 +1,6 @@
 #pragma once
 // Options and statistics shared by every time stepper (ARKODE ERK, ARKODE IMEX, leapfrog).
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -8,6 +9,8 @@
 #include "sphark/parallel/communicator.hpp"
 
 namespace sphark {
+
+inline constexpr int kStepsBelowFloor = 100;
 
 struct StepperOptions {
   // Any explicit Butcher table of SUNDIALS 6.4.1 (see erk_table_names()), "ark-imex" or "leapfrog".
@@ -33,6 +36,18 @@ struct StepperOptions {
   // > 0: a step reduction after a recoverable RHS failure that would go below min_dt ends the
   // run (Failed) instead (otherwise a blow-up at time T can shrink steps towards T endlessly).
   Real min_dt = 0;
+  // > 0: kStepsBelowFloor consecutive steps shorter than step_floor end the run (Failed, with
+  // the state before the last of them); a step landing on an output time (it may be a sliver)
+  // does not count. (Consecutive: ARKODE's first steps can lie orders of magnitude below the
+  // stable step before its step control grows them, by up to 20x per step.) Whatever its
+  // value, a step that does not advance t (t + dt == t) ends the run at once. The run driver
+  // sets it from the run's time scale (run/time_loop.hpp: step_floor_fraction x t_end).
+  Real step_floor = 0;
+  // Polled before every right-hand-side evaluation and every leapfrog step: true ends advance()
+  // with AdvanceStatus::Interrupted and the last accepted step in (t, y) (the time loop's stop
+  // signals, run/signals.hpp). Empty: never. A distributed run polls it on every rank and
+  // agrees on the answer (collective). The poll does not change a run that is not interrupted.
+  std::function<bool()> interrupt;
   // Restart: Stepper::resume_data() of the run being continued (see stepper.hpp); empty = none.
   std::vector<Real> resume_data;
   // Testing aid of the blow-up path: from this time on the guard (integrate/guarded_system.hpp)

@@ -44,21 +44,30 @@ struct RunControlOptions {
 void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
 // After parsing: --output-every and --checkpoint-every given by the user must not exceed
 // --t-end (p.fail, exit 2); their defaults follow a shorter run (limit_to_t_end).
+// Also checks --dt against the step floor (check_step_option).
 void check_run_options(const OptionParser& p, RunControlOptions& o, CoreOptions& core);
+// A fixed --dt below the step floor kStepFloorFraction x --t-end (run/time_loop.hpp), or one that
+// does not advance t at --t-end (t + dt == t): p.fail("--dt", ...), exit 2.
+void check_step_option(const OptionParser& p, const CoreOptions& core);
 struct TimeLoopSettings;
 // The run-control part of a time loop's settings: the checkpoint file and its interval, the
 // checkpoint to resume from (nullptr: none) and the NaN injection of --inject-nan-at.
 void apply_run_control(TimeLoopSettings& ts, const RunControlOptions& o, const Checkpoint* restart,
                        const std::filesystem::path& checkpoint);
 // After the options (and any restart) are checked, before the first output: sets the thread
-// count, switches --profile on, creates the output directory (one line + exit 2 if it cannot be
-// written) and installs the SIGINT/SIGTERM stop handlers.
-void start_run(const CoreOptions& core, std::string_view program);
+// count (clamped to the cores, core.threads updated; see apply_thread_count), switches --profile
+// on, creates the output directory (one line + exit 2 if it cannot be written) and installs the
+// SIGINT/SIGTERM stop handlers.
+void start_run(CoreOptions& core, std::string_view program);
 
 // The checkpoint named by --restart (nullopt without the option), loaded before anything is
-// parsed or written. A missing value, an unreadable or corrupt file or one written by another
-// program: one line "<program>: --restart: ..." and exit 2.
+// parsed or written. A missing value, an unreadable or corrupt file, one written by another
+// program or one whose numbers cannot be a run's (checkpoint_number_problem): one line
+// "<program>: --restart: ..." and exit 2.
 std::optional<Checkpoint> load_restart_option(int argc, const char* const* argv, const std::string& program);
+// Why a (well-formed) checkpoint's numbers cannot be a run's: a negative or non-finite time or
+// last step, a non-finite scalar; nullopt if they can.
+std::optional<std::string> checkpoint_number_problem(const Checkpoint& c);
 
 // This run's argument list, [program] first: on a restart the checkpoint's stored options, then
 // the ones given now (which override them), without --restart itself.

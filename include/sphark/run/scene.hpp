@@ -14,9 +14,17 @@
 //   }
 //
 // Order of calls: set_defaults(core) -> add_options(parser) -> (parse) -> check_options(parser,
-// core, control, restarting) -> [run_instead(core)] -> run_names() -> for each: make_run(name, core) -> run_time_loop
-// -> finished(name, run, result) -> report(core, runs, all_ok). A scene throws std::invalid_argument from
-// make_run for a value that only the scene can reject (one line, exit 2).
+// core, control, restarting) -> run_names() -> for each run: predicted_particles(name), make_probe_run(name,
+// core, n) (the cost estimate: a run that does not fit in memory is refused here, exit 2, nothing
+// written) -> (output directory, run.json) -> [run_instead(core)] -> for each: make_run(name, core) ->
+// run_time_loop -> finished(name, run, result) -> report(core, runs, all_ok). A scene throws
+// std::invalid_argument from make_probe_run / make_run for a value that only the scene can reject
+// (one line, exit 2; from the probe, before anything is written).
+//
+// Signals: SIGINT/SIGTERM during a run end it within one RHS evaluation with a checkpoint; during
+// the set-up of a run (make_run up to its stepper) a long loop's poll (throw_if_stop_requested)
+// or, where no poll reaches, the set-up watchdog (run/signals.hpp) ends the program within
+// ~0.3 s, with run.json saying "stopped" (there is no state to checkpoint yet).
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -46,6 +54,7 @@ class SceneRun {
   virtual std::vector<Real> initial_state() = 0;
   // The stepper of this run from the core options (default: stepper_options(core, system(),
   // program), which says so when ark-imex meets a run without a stiff part).
+  // An empty `program`: quiet (the cost probe asks too).
   virtual StepperOptions stepper(const CoreOptions& core, std::string_view program);
   // The diagnostics row at (t, y) (its columns) and the VTK frame of (t, y), both functions of
   // (t, y): a frame's arrays stay valid until the next call.
@@ -56,6 +65,11 @@ class SceneRun {
   virtual bool finished(Real /*t*/) { return false; }
   virtual bool root(Real /*t*/, const std::vector<int>& /*found*/) { return false; }
   virtual std::vector<std::pair<std::string, Real*>> saved_numbers() { return {}; }
+  // A run whose particle set changes between steps (sink particles created, gas accreted): the
+  // loop then steps one by one and calls after_step (TimeLoopHooks::after_step, restart_layout).
+  virtual bool changes_particles() const { return false; }
+  virtual std::optional<TimeLoopHooks::Resize> after_step(Real /*t*/, const Real* /*y*/) { return std::nullopt; }
+  virtual StateLayout restart_layout(const Checkpoint& /*c*/) { return layout(); }
   // Where and how often it writes: the driver fills `s` (program, run, options, scene text,
   // t_end, sample/frame intervals from --output-every, <dir>/diagnostics.csv, <dir>/<name>_NNNNN.vtp,
   // <dir>/checkpoint.bin, run control) before this call; a scene changes what differs.
@@ -91,6 +105,17 @@ class Scene {
   // restart must give the same text.
   virtual std::string scene_text(const std::string& run) const = 0;
   virtual std::unique_ptr<SceneRun> make_run(const std::string& run, const CoreOptions& core) = 0;
+  // The cost estimate (run/cost_estimate.hpp), before anything is built or written: the particles
+  // of `run` from the options alone (a real number: options can ask for more than any machine
+  // holds; NaN: unknown, then no estimate), the option that sets them (named by a refusal), and
+  // the same run with about `particles` particles, every other option unchanged (nullptr: no
+  // probe). A probe must write nothing; its frame() is never called.
+  virtual Real predicted_particles(const std::string& /*run*/) const;
+  virtual std::string size_option() const { return {}; }
+  virtual std::unique_ptr<SceneRun> make_probe_run(const std::string& /*run*/, const CoreOptions& /*core*/,
+                                                   Real /*particles*/) {
+    return nullptr;
+  }
   // After each run (also a failed or stopped one), and once at the end of all (or after the first
   // run that did not end ok) with the runs planned (all of run_names(), or a restart's one):
   // summaries and pictures. report() returns an exit code (non-zero if writing the report

@@ -1,7 +1,9 @@
 #pragma once
 // The run driver shared by every time-integrating example: integrate an OdeSystem from an initial
 // state (or a checkpoint) to t_end, sampling diagnostics on a fixed time grid, writing VTK frames,
-// checkpoints and the diagnostics CSV atomically, polling SIGINT/SIGTERM, reporting progress and
+// checkpoints and the diagnostics CSV atomically, polling SIGINT/SIGTERM (between output times and,
+// through StepperOptions::interrupt, before every RHS evaluation: a stop ends the run within one
+// evaluation, with a checkpoint of the last accepted step), reporting progress and
 // (with --profile) the wall-time split; on a blow-up it writes the last good state (VTK frame +
 // checkpoint) and says why, when and for which particles.
 //
@@ -24,6 +26,7 @@
 // fixed-step method whenever the system's rhs depends on y alone.
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +38,12 @@
 #include "sphark/state/state_layout.hpp"
 
 namespace sphark {
+
+// The step floor: a step shorter than kStepFloorFraction x t_end is an error, before the run for
+// a fixed --dt (exit 2, check_step_option in run/restart.hpp) and during it for any stepper
+// (StepperOptions::step_floor: the run fails, exit 3, with the last good state). At the floor a
+// run needs 1e9 steps; the finest runs of the examples take steps of ~1e-4 t_end.
+inline constexpr Real kStepFloorFraction = 1e-9;
 
 struct TimeLoopSettings {
   std::string program;                  // "water_drop": checkpoint owner and message prefix
@@ -55,6 +64,9 @@ struct TimeLoopSettings {
   // Steps below min_dt_fraction x min(initial stable step, sample_every) end the run as a failure
   // (unless StepperOptions::min_dt is set).
   Real min_dt_fraction = 1e-6;
+  // Every step must be at least step_floor_fraction x t_end (unless StepperOptions::step_floor
+  // is set): see kStepFloorFraction.
+  Real step_floor_fraction = kStepFloorFraction;
   bool quiet = false;                   // no progress lines
   double progress_interval = 2;         // seconds between progress lines
 };
@@ -76,6 +88,21 @@ struct TimeLoopHooks {
   std::function<bool(Real t, const std::vector<int>& found)> root;
   // Named run-loop numbers saved in checkpoints and restored on restart (bound by pointer).
   std::vector<std::pair<std::string, Real*>> state;
+  // Optional: called after every step (the loop then steps one by one, Stepper::step) with the
+  // state at t; a system whose particle count changes (sinks created, gas accreted) returns its
+  // new layout and state, which the stepper then continues from (Stepper::resize).
+  struct Resize {
+    StateLayout layout;
+    std::vector<Real> y;
+    std::vector<Real> atol;  // per entry of the new state when the run uses per-entry tolerances
+  };
+  std::function<std::optional<Resize>(Real t, const Real* y)> after_step;
+  // Optional, with after_step: on a restart, the system takes the checkpoint's species counts
+  // and returns its layout (which must then match the checkpoint's).
+  std::function<StateLayout(const Checkpoint& c)> restart_layout;
+  // Optional: called once the stepper exists, before the first output (the set-up is over: from
+  // here on a stop signal is answered with a checkpoint).
+  std::function<void()> started;
 };
 
 enum class TimeLoopStatus { Reached, EndedEarly, Failed, Stopped };

@@ -34,6 +34,7 @@ struct StabilityLimit {
   double cpu_seconds = 0;
 };
 
+// Throws StopRequested (run/signals.hpp) when a trial is stopped by SIGINT/SIGTERM.
 StabilityLimit find_stability_limit(const StudyScene& scene, const std::string& method,
                                     const StabilitySettings& settings);
 

@@ -28,7 +28,7 @@ struct StudyLimits {
 };
 
 struct StudyResult {
-  std::string status = "ok";  // ok | failed | blowup | budget | nonfinite
+  std::string status = "ok";  // ok | failed | blowup | budget | nonfinite | stopped (SIGINT/SIGTERM: not a result)
   std::string failure;        // stepper failure reason or criterion that stopped the run
   double cpu_seconds = 0;     // process CPU time (std::clock) of the integration
   StepperStats stats;

@@ -154,6 +154,14 @@ std::unique_ptr<SceneRun> CleaningDiscScene::make_run(const std::string& run, co
   return std::make_unique<DiscRun>(variant(run), sigma_, spacing_);
 }
 
+// The square lattice inside the unit disc: pi / dx^2 points (1976 for dx = 0.04).
+Real CleaningDiscScene::predicted_particles(const std::string&) const { return kPi / (spacing_ * spacing_); }
+
+std::unique_ptr<SceneRun> CleaningDiscScene::make_probe_run(const std::string& run, const CoreOptions&, Real particles) {
+  const Real spacing = predicted_particles(run) > particles ? std::sqrt(kPi / particles) : spacing_;
+  return std::make_unique<DiscRun>(variant(run), sigma_, spacing);
+}
+
 void CleaningDiscScene::finished(const std::string& run, SceneRun&, const TimeLoopResult& result) {
   results_.push_back(summarise(run, result, t_end_));
 }

@@ -40,7 +40,7 @@ int run_lattice_ensemble(const LatticeRunConfig& run, const std::vector<std::str
       for (int seed = 1; seed <= seeds; ++seed)
         jobs.push_back({m == "mirror" ? GhostMap::Mirror : GhostMap::DensityPreserving, v0, static_cast<unsigned>(seed)});
   const int threads = core.threads > 0 ? core.threads : 2;
-  install_stop_handlers();  // SIGINT/SIGTERM: the runs in progress finish, the CSVs hold the runs done
+  install_stop_handlers();  // SIGINT/SIGTERM: the runs in progress stop, the CSVs hold the runs completed
   std::fprintf(stderr, "cylinder_lattice: ensemble of %zu runs on %d thread(s)\n", jobs.size(), threads);
   const auto w0 = std::chrono::steady_clock::now();
   std::size_t done = 0;
@@ -57,7 +57,7 @@ int run_lattice_ensemble(const LatticeRunConfig& run, const std::vector<std::str
   double cpu = 0;
   std::size_t completed = 0;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    if (results[i].reason.empty()) continue;  // not started (stop signal)
+    if (results[i].reason.empty() || results[i].reason == "stopped") continue;  // not started / cut short by a stop signal
     ++completed;
     char row[160];
     std::snprintf(row, sizeof row, "%s,%.2f,%u,%.9g,", map_name(jobs[i].map).c_str(), jobs[i].v0, jobs[i].seed,

@@ -13,6 +13,7 @@
 
 #include "sphark/boundaries/wall_relaxation.hpp"
 #include "sphark/run/signals.hpp"
+#include "sphark/run/time_loop.hpp"  // kStepFloorFraction
 #include "sphark/scenes/cylinder_lattice/lattice_run.hpp"
 
 namespace sphark {
@@ -56,6 +57,7 @@ std::vector<Real> random_fluid_positions(const LatticeParams& p, std::size_t n, 
   x.reserve(2 * n);
   const std::size_t max_attempts = 2000 * n + 100000;
   for (std::size_t attempt = 0; attempt < max_attempts && x.size() < 2 * n; ++attempt) {
+    if (attempt % 65536 == 0) throw_if_stop_requested();  // SIGINT/SIGTERM: a long set-up ends here
     const Vec<2> c(u(rng), u(rng));
     if (c.norm() < r_min) continue;
     const int ci = cell_of(c[0]), cj = cell_of(c[1]);
@@ -114,13 +116,18 @@ LatticeRunResult run_lattice(const LatticeRunConfig& cfg, Real output_every, con
     }
     if (observe) observe(0, sys, y.data());
     if (res.reason.empty()) {
-      auto stepper = make_stepper(sys, cfg.stepper, 0, y.data());
+      StepperOptions so = cfg.stepper;  // SIGINT/SIGTERM end the run at its next RHS evaluation
+      so.interrupt = [] { return stop_requested() != 0; };
+      if (so.step_floor <= 0) so.step_floor = kStepFloorFraction * cfg.t_end;
+      auto stepper = make_stepper(sys, so, 0, y.data());
       Real t = 0;
       const Real every = output_every > 0 ? output_every : cfg.t_end;
       for (int k = 1; res.reason.empty(); ++k) {
         const Real t_out = std::min(cfg.t_end, k * every);
         const AdvanceStatus st = stepper->advance(t_out, y.data(), t);
-        if (st == AdvanceStatus::Failed) {
+        if (st == AdvanceStatus::Interrupted) {
+          res.reason = "stopped";
+        } else if (st == AdvanceStatus::Failed) {
           res.reason = "failure: " + stepper->failure_reason();
         } else if (st == AdvanceStatus::RootFound) {
           const std::vector<int> r = stepper->roots_found();
@@ -128,7 +135,7 @@ LatticeRunResult run_lattice(const LatticeRunConfig& cfg, Real output_every, con
         } else if (t_out >= cfg.t_end) {
           res.reason = "t_end";
         }
-        if (observe && (st != AdvanceStatus::Failed || t > 0)) {
+        if (observe && st != AdvanceStatus::Interrupted && (st != AdvanceStatus::Failed || t > 0)) {
           if (sys.prepare(y.data()) == 0) observe(t, sys, y.data());
         }
       }
@@ -139,6 +146,8 @@ LatticeRunResult run_lattice(const LatticeRunConfig& cfg, Real output_every, con
     res.y = std::move(y);
   } catch (const std::exception& e) {
     res.reason = std::string("failure: ") + e.what();
+  } catch (const StopRequested&) {  // during the set-up (random placement, relaxation)
+    res.reason = "stopped";
   }
   res.cpu_seconds = thread_cpu_seconds() - cpu0;
   return res;

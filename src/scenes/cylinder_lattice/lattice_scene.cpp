@@ -200,6 +200,16 @@ std::unique_ptr<SceneRun> CylinderLatticeScene::make_run(const std::string& map,
   return std::make_unique<LatticeRun>(cfg);
 }
 
+// The same run with fewer particles and no relaxation (it moves them, it does not add memory).
+std::unique_ptr<SceneRun> CylinderLatticeScene::make_probe_run(const std::string& map, const CoreOptions&,
+                                                               Real particles) {
+  LatticeRunConfig cfg = run_;
+  cfg.params.map = parse_map(map);
+  cfg.particles = std::min(cfg.particles, static_cast<std::size_t>(particles));
+  cfg.relax_iterations = 0;
+  return std::make_unique<LatticeRun>(cfg);
+}
+
 void CylinderLatticeScene::finished(const std::string& map, SceneRun& r, const TimeLoopResult& result) {
   outcomes_.push_back({map, static_cast<LatticeRun&>(r).result(result), result.wall_seconds});
   const Outcome& o = outcomes_.back();

@@ -126,6 +126,18 @@ std::unique_ptr<SceneRun> OrszagTangScene::make_run(const std::string& variant, 
   return std::make_unique<OrszagTangRun>(variant, params_);
 }
 
+Real OrszagTangScene::predicted_particles(const std::string&) const {
+  return static_cast<Real>(params_.nx) * hexagonal_rows(params_.nx);
+}
+
+std::unique_ptr<SceneRun> OrszagTangScene::make_probe_run(const std::string& variant, const CoreOptions&,
+                                                          Real particles) {
+  OrszagTangParams q = params_;  // nx rows of ~2 nx / sqrt(3): nx = sqrt(N sqrt(3) / 2)
+  if (predicted_particles(variant) > particles)
+    q.nx = std::max(8, static_cast<int>(std::lround(std::sqrt(particles * std::sqrt(3.0) / 2))));
+  return std::make_unique<OrszagTangRun>(variant, q);
+}
+
 void OrszagTangScene::finished(const std::string& variant, SceneRun&, const TimeLoopResult& result) {
   results_.push_back(summarise(variant, result));
 }

@@ -1,5 +1,6 @@
 #include "sphark/scenes/water_drop/drop_scene.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "drop_run.hpp"
@@ -73,6 +74,18 @@ std::string WaterDropScene::scene_text(const std::string& run) const { return sp
 
 std::unique_ptr<SceneRun> WaterDropScene::make_run(const std::string& run, const CoreOptions& core) {
   return std::make_unique<DropRun>(config_of(run), diagnostics_every_, core.output_every);
+}
+
+// The square lattice inside the disc: pi R^2 / dx^2 points (1976 for R = 1, dx = 0.04).
+Real WaterDropScene::predicted_particles(const std::string&) const {
+  return kPi * config_.radius * config_.radius / (config_.spacing * config_.spacing);
+}
+
+std::unique_ptr<SceneRun> WaterDropScene::make_probe_run(const std::string& run, const CoreOptions& core,
+                                                         Real particles) {
+  WaterDropConfig c = config_of(run);
+  if (predicted_particles(run) > particles) c.spacing = c.radius * std::sqrt(kPi / particles);
+  return std::make_unique<DropRun>(c, diagnostics_every_, core.output_every);
 }
 
 void WaterDropScene::finished(const std::string& run, SceneRun& r, const TimeLoopResult& result) {

@@ -74,7 +74,7 @@ inline void finish_particle(const PairSums<D>& s, const ParticleA<D>& pa, const 
     if (in.subtract_monopole) mhd::subtract_monopole_force<D>(dv_dt, pa.B, s.monopole);  // eq. (9)
     Eigen::Map<Vec<D>>(out.dx_dt + D * p) = pa.v;
     Eigen::Map<Vec<D>>(out.dv_dt + D * p) = dv_dt;
-    out.du_dt[p] = in.P[a] * in.inv_omega_rho2[a] * s.continuity + s.du_dt_dissipation;
+    if (out.du_dt) out.du_dt[p] = in.P[a] * in.inv_omega_rho2[a] * s.continuity + s.du_dt_dissipation;
     if (in.induction) dB_dt += s.induction.finish(inv_omega_rho) + pa.rho * s.resistive;  // eqs. (7), (10)
     else out.dalpha_dt[p] = 0;  // alpha advected with the flow: d alpha / dt = 0
   }
@@ -88,6 +88,7 @@ template <int D, class K>
 void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
   using R = Record<D>;
   const Real* psi = opt_.cleaning != Cleaning::None ? psi_.data() : nullptr;
+  const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
   records_.resize(R::size * n_);
 #pragma omp parallel for schedule(static)
   for (std::size_t a = 0; a < n_; ++a) {
@@ -105,7 +106,7 @@ void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
     }
     r[R::h] = h_[a], r[R::m] = ms_[a], r[R::inv_h] = inv_h;
     r[R::grad_scale] = s;  // f_over_r(r, h) = f_over_r(r / h, 1) / h^(D+2)
-    r[R::rho] = rho_[a], r[R::P] = P_[a], r[R::u] = opt_.evolve_particles ? u_[a] : 0;
+    r[R::rho] = rho_[a], r[R::P] = P_[a], r[R::u] = energy ? u_[a] : 0;  // no u with a barotropic EOS
     r[R::fast_speed] = fast_speed_[a];
     // local_ch: the state is psi / c_h
     r[R::psi_o] = psi ? o * psi[a] * (opt_.local_ch ? cleaning_speeds_[a] : 1.0) : 0;
@@ -137,17 +138,19 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   pair_loop_arrays(y);
   const bool evolve = opt_.evolve_particles, induction = opt_.field == FieldRepresentation::MagneticField;
   const bool cleaning = opt_.cleaning != Cleaning::None;
+  const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
   const NeighbourList& L = ns_.list();
   const spmhd_detail::RowInput<D> in{records_.data(), L.indices.data(), L.offsets.data(), MinimumImage<D>(ns_.box()),
-                                     K::support, evolve, induction, cleaning, opt_.cleaning == Cleaning::Constrained,
-                                     opt_.alpha_visc, opt_.beta_visc, opt_.alpha_u, induction ? opt_.alpha_b : 0.0};
+                                     K::support, evolve, energy, induction, cleaning,
+                                     opt_.cleaning == Cleaning::Constrained, opt_.alpha_visc, opt_.beta_visc,
+                                     energy ? opt_.alpha_u : 0.0, induction ? opt_.alpha_b : 0.0};
   const FinishInput fin{cleaning ? psi_.data() : nullptr, omega_.data(), P_.data(), inv_omega_rho2_.data(),
                         cleaning_speeds_.data(), cleaning_speed_, evolve, induction, cleaning,
                         opt_.cleaning == Cleaning::Constrained, opt_.local_ch, opt_.subtract_monopole_force, opt_.sigma};
   auto derivative = [&](Field f, bool present) { return present ? ydot + layout_.offset(f) : nullptr; };
   const PairLoopOutput out{perm_.data(),
                            derivative(Field::Position, evolve), derivative(Field::Velocity, evolve),
-                           derivative(Field::InternalEnergy, evolve), derivative(Field::MagneticField, induction),
+                           derivative(Field::InternalEnergy, energy), derivative(Field::MagneticField, induction),
                            derivative(Field::EulerAlpha, !induction), derivative(Field::Psi, cleaning),
                            divB_.data(), divv_.data()};
   const PairRow<D, K> row = pair_row_in_use<D, K>();

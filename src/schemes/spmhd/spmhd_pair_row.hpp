@@ -48,7 +48,9 @@ struct RowInput {
   const std::size_t* offsets;
   MinimumImage<D> image;
   Real support;
-  bool evolve, induction, cleaning, constrained;
+  bool evolve;
+  bool energy;  // u in the state (not with a barotropic EOS): without it no du/dt terms are summed
+  bool induction, cleaning, constrained;
   Real alpha_visc, beta_visc, alpha_u, alpha_b;
   const Real* record(std::size_t i) const { return records + Record<D>::size * i; }
 };
@@ -221,7 +223,7 @@ inline void add_pairs(LaneSums<S, D>& s, const ParticleA<S, D>& pa, const RowInp
                                                         simd::broadcast<S>(in.beta_visc), pa.fast_speed,
                                                         fb[R::fast_speed], w_ab, inv_rho_ab, rhat, rhat_dot_gbar);
     s.dv_dt += simd::where(closing, visc.dv_dt);
-    s.du_dt_dissipation += closing ? visc.du_dt : S{};
+    if (in.energy) s.du_dt_dissipation += closing ? visc.du_dt : S{};
   }
   if (in.alpha_u > 0)
     s.du_dt_dissipation += conductivity_term(m_b, simd::broadcast<S>(in.alpha_u), pa.P, fb[R::P], pa.u, fb[R::u],
@@ -230,7 +232,7 @@ inline void add_pairs(LaneSums<S, D>& s, const ParticleA<S, D>& pa, const RowInp
     const auto res = mhd::resistivity_term<D>(m_b, simd::broadcast<S>(in.alpha_b), v_ab, w_ab, rhat, inv_rho_ab, B_ab,
                                               rhat_dot_gbar);
     s.resistive += res.dB_dt;
-    s.du_dt_dissipation += res.du_dt;
+    if (in.energy) s.du_dt_dissipation += res.du_dt;
   }
 }
 

@@ -37,11 +37,16 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
     : n_(masses.size()), m_(std::move(masses)), opt_(opt), layout_(n_), ns_(std::move(box)) {
   if (n_ == 0) throw std::invalid_argument("SpmhdScheme: no particles");
   if (!(opt_.gamma > 1)) throw std::invalid_argument("SpmhdScheme: gamma must be > 1");
+  if (opt_.barotropic) {
+    eos_.emplace(*opt_.barotropic);
+    opt_.alpha_u = 0;  // no internal energy to conduct
+  }
   if (!(opt_.eta > 0)) throw std::invalid_argument("SpmhdScheme: eta must be > 0");
   if (opt_.sigma < 0) throw std::invalid_argument("SpmhdScheme: sigma must be >= 0");
   if (!(opt_.overclean >= 1)) throw std::invalid_argument("SpmhdScheme: overclean must be >= 1");
   if (opt_.evolve_particles) {
-    layout_.add(Field::Position, D).add(Field::Velocity, D).add(Field::InternalEnergy, 1);
+    layout_.add(Field::Position, D).add(Field::Velocity, D);
+    if (!opt_.barotropic) layout_.add(Field::InternalEnergy, 1);
     if (opt_.field == FieldRepresentation::MagneticField) {
       layout_.add(Field::MagneticField, 3);
     } else {
@@ -59,11 +64,21 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   }
   if (opt_.cleaning != Cleaning::None) layout_.add(Field::Psi, 1);
 
-  h_.assign(n_, opt_.h_initial);
-  if (!(opt_.h_initial > 0)) {
-    // First guess from the bounding box of the initial (or fixed) positions, set in prepare().
-    h_.assign(n_, 0);
+  if (opt_.sink_particles) {  // a second species: sink particles (none yet), after every gas field
+    if (D != 3 || !opt_.self_gravity) throw std::invalid_argument("SpmhdScheme: sink particles need D = 3 and self-gravity");
+    layout_.add_species(Species::Sink, 0).add(Field::Position, 3).add(Field::Velocity, 3).add(Field::Mass, 1).add(Field::Spin, 3);
   }
+  h_.assign(n_, opt_.h_initial > 0 ? opt_.h_initial : 0);  // 0: first guess from the bounding box, in prepare()
+  allocate_per_particle();
+  if (opt_.self_gravity) {
+    if (D != 3 || !opt_.evolve_particles) throw std::invalid_argument("SpmhdScheme: self-gravity needs D = 3 and moving particles");
+    gravity_ = make_self_gravity<K>(opt_.gravity_solver, GravityOptions{opt_.G, opt_.gravity_theta, 8});
+  }
+}
+
+// Every per-particle buffer for n_ particles (h_ and x_ are set by the caller), slots = particles.
+template <int D, class K>
+void SpmhdScheme<D, K>::allocate_per_particle() {
   rho_.assign(n_, 0);
   omega_.assign(n_, 1);
   P_.assign(n_, 0);
@@ -85,10 +100,15 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   x_from_state_.assign(x_.size(), 0);
   if (opt_.evolve_particles) {
     v_.assign(D * n_, 0);
-    u_.assign(n_, 0);
+    if (!opt_.barotropic) u_.assign(n_, 0);
   }
   if (opt_.cleaning != Cleaning::None) psi_.assign(n_, 0);
   if (opt_.field == FieldRepresentation::EulerPotentials) alpha_.assign(n_, 0);
+  if (opt_.self_gravity) {
+    gravity_acc_.assign(3 * n_, 0);
+    gravity_potential_.assign(n_, 0);
+    zeta_over_omega_.assign(n_, 0);
+  }
 }
 
 template <int D, class K>
@@ -161,7 +181,7 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
       p = perm_.data();  // a rebuild renumbers the slots
     }
     gather(Field::Velocity, D, v_);
-    gather(Field::InternalEnergy, 1, u_);
+    if (!opt_.barotropic) gather(Field::InternalEnergy, 1, u_);
   } else if (!built_) {
     if (const int rc = ensure_neighbours_and_density(x)) return rc;
     p = perm_.data();
@@ -174,12 +194,18 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     gather(Field::EulerAlpha, 1, alpha_);
     euler_potential_field(x, alpha_.data());
   }
-  const Real* u = opt_.evolve_particles ? u_.data() : nullptr;
+  const Real* u = opt_.evolve_particles && !opt_.barotropic ? u_.data() : nullptr;
+  const BarotropicEos* eos = eos_ ? &*eos_ : nullptr;
   Real cmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : cmax)
   for (std::size_t a = 0; a < n_; ++a) {
-    P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
-    sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    if (eos) {
+      P_[a] = eos->pressure(rho_[a]);
+      sound_speed_[a] = eos->sound_speed(rho_[a]);
+    } else {
+      P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
+      sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    }
     const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
     // fast magnetosonic speed (upper bound)
     fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);
@@ -202,6 +228,8 @@ int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) {  // may thro
   ScopedPhase timer(Phase::Rhs);
   if (const int rc = prepare(y); rc != 0) return rc;
   force_pass(y, ydot);
+  if (opt_.self_gravity) gravity_pass(ydot);
+  if (opt_.sink_particles) sink_pass(y, ydot);
   return 0;
 }
 
@@ -237,7 +265,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) {
 }
 
 template <int D, class K>
-Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y, const Real* /*ydot*/) noexcept {
+Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) noexcept {
   constexpr Real failed = std::numeric_limits<Real>::quiet_NaN();  // documented in the header
   try {
     if (prepare(y) != 0) return failed;  // error_ says why
@@ -255,6 +283,13 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real /*t*/, const Real* y, const Real* /*y
       return failed;
     }
     if (vsig > 0) dt = std::min(dt, opt_.courant * h_[a] / vsig);
+  }
+  if (opt_.self_gravity) {  // the force criterion, with the accelerations of ydot or of f(t, y)
+    if (!ydot) {
+      if (evaluate(t, y) != 0) return failed;
+      ydot = scratch_.data();
+    }
+    dt = std::min(dt, force_time_step(ydot));
   }
   return dt;
 }

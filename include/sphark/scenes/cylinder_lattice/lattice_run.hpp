@@ -26,7 +26,7 @@ struct LatticeRunConfig {
 
 struct LatticeRunResult {
   Real t_max = 0;
-  std::string reason;  // "t_end", "penetration", "accumulation", "failure: ..."
+  std::string reason;  // "t_end", "penetration", "accumulation", "failure: ...", "stopped" (SIGINT/SIGTERM)
   StepperStats stats;
   long rhs_calls = 0;
   double cpu_seconds = 0;  // CPU time of the calling thread
@@ -53,6 +53,8 @@ using LatticeObserver = std::function<void(Real t, LatticeSystem& system, const 
 std::vector<Real> initial_positions(const LatticeRunConfig& cfg);
 
 // Runs from rest at initial_positions(cfg). Never throws for a failing run (reason "failure: ...").
+// After SIGINT/SIGTERM (run/signals.hpp) it ends at its next poll (set-up loops, every RHS
+// evaluation) with reason "stopped". Steps below kStepFloorFraction x t_end end it as a failure.
 LatticeRunResult run_lattice(const LatticeRunConfig& cfg, Real output_every = 0, const LatticeObserver& observe = {});
 
 struct EnsembleJob {
@@ -64,8 +66,8 @@ struct EnsembleJob {
 // Runs every job (cfg with its map, v0, seed) on `threads` threads, each run on one OpenMP
 // thread; results[i] belongs to jobs[i] whatever the thread count (runs are independent and
 // deterministic). on_done(i, result) is called under a lock after each run (may be empty).
-// After SIGINT/SIGTERM (run/signals.hpp) no new run starts: runs never started keep an empty
-// reason.
+// After SIGINT/SIGTERM (run/signals.hpp) no new run starts and the runs in progress end at their
+// next poll with reason "stopped"; runs never started keep an empty reason.
 std::vector<LatticeRunResult> run_ensemble(const LatticeRunConfig& cfg, const std::vector<EnsembleJob>& jobs,
                                            int threads,
                                            const std::function<void(std::size_t, const LatticeRunResult&)>& on_done = {});

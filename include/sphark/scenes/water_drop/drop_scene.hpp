@@ -28,6 +28,9 @@ class WaterDropScene final : public Scene {
   void check_restart_run(const OptionParser& p, const std::string& checkpoint_run) const override;
   std::string scene_text(const std::string& run) const override;
   std::unique_ptr<SceneRun> make_run(const std::string& run, const CoreOptions& core) override;
+  Real predicted_particles(const std::string& run) const override;
+  std::string size_option() const override { return "--spacing"; }
+  std::unique_ptr<SceneRun> make_probe_run(const std::string& run, const CoreOptions& core, Real particles) override;
   void finished(const std::string& run, SceneRun& r, const TimeLoopResult& result) override;
   int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
   std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& runs_done) const override;

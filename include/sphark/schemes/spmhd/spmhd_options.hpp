@@ -4,6 +4,11 @@
 #include <string_view>
 
 #include "sphark/core/types.hpp"
+#include <optional>
+
+#include "sphark/gravity/point_mass_gravity.hpp"
+#include "sphark/gravity/self_gravity.hpp"
+#include "sphark/operators/barotropic_eos.hpp"
 
 namespace sphark {
 
@@ -20,6 +25,9 @@ enum class FieldRepresentation {
 
 struct SpmhdOptions {
   Real gamma = 5.0 / 3.0;       // adiabatic index, P = (gamma - 1) rho u
+  // A barotropic gas P = P(rho) (Price & Bate 2007; operators/barotropic_eos.hpp) instead: the
+  // state then holds no internal energy, and the conductivity (alpha_u) is off.
+  std::optional<BarotropicEosParams> barotropic;
   Real eta = 1.2;               // h = eta (m/rho)^(1/D), seed 000 eq. (5)
   Real h_tolerance = 1e-10;     // relative Newton tolerance on h
   Real h_initial = 0;           // first guess for h (0: from the bounding box and N)
@@ -42,6 +50,19 @@ struct SpmhdOptions {
   Real alpha_b = 0.0;           // artificial resistivity, seed 000 eq. (10) (0 = off)
 
   Real courant = 0.3;           // for max_stable_dt: C h / v_sig
+
+  // Self-gravity (3D): kernel softening with each particle's own h and the grad-h term (Price &
+  // Monaghan 2007; gravity/), isolated boundaries even in a periodic box (no Ewald sum).
+  bool self_gravity = false;
+  GravitySolver gravity_solver = GravitySolver::Tree;
+  Real G = 1;                   // gravitational constant in code units
+  Real gravity_theta = 0.5;     // tree opening angle
+  Real force_courant = 0.25;    // with gravity, max_stable_dt also <= force_courant sqrt(h / |a|)
+  // Sink particles (a second species: position, velocity, mass, spin; none at first), with
+  // gravity on the gas and on each other (gravity/point_mass_gravity.hpp). Created and fed
+  // between steps (sinks/sink_events.hpp).
+  bool sink_particles = false;
+  SinkSoftening sink_softening;
   Real skin = 0.25;             // Verlet skin: particle i lists neighbours within 2 h_i (1 + skin)
 };
 

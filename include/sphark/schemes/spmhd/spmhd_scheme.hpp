@@ -2,7 +2,8 @@
 // Smoothed particle magnetohydrodynamics with constrained hyperbolic/parabolic divergence
 // cleaning (seed 000, §II; Tricco & Price 2012). An OdeSystem: the state holds only what the
 // variant needs (StateLayout):
-//   evolve_particles:  x (D), v (D), u (1), then B (3) or Euler alpha (1), then psi (1) if cleaning
+//   evolve_particles:  x (D), v (D), u (1, not with a barotropic EOS), then B (3) or Euler alpha (1),
+//                      then psi (1) if cleaning
 //   cleaning subsystem (fixed particles, §IV-A):  B (3), psi (1)
 // Density, h and Omega come from summation each RHS (seed 000, eqs. (4)-(5)). The psi damping
 // -psi/tau is the stiff diagonal c = sigma c_h / h_a on the psi entries.
@@ -18,13 +19,14 @@
 // from the state and derivatives scattered back. Neighbour rows are sorted by particle index,
 // so every sum runs in the same order whatever the slots: results do not depend on them.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sphark/integrate/ode_system.hpp"
 #include "sphark/kernels/kernels.hpp"
-#include "sphark/neighbours/neighbour_search.hpp"
+#include "sphark/neighbours/neighbour_method.hpp"
 #include "sphark/schemes/spmhd/spmhd_options.hpp"
 #include "sphark/state/state_layout.hpp"
 
@@ -68,7 +70,7 @@ class SpmhdScheme final : public OdeSystem {
   void drop_neighbour_lists() { built_ = false; }
   // The current neighbour lists (pairs within K::support * h (1 + skin) at the last build).
   // Its particle numbers are the scheme's internal slots (see below), not state indices.
-  const NeighbourSearch<D>& neighbours() const { return ns_; }
+  const AdaptiveNeighbourSearch<D>& neighbours() const { return ns_; }
   // Pairs a-b (ordered, a != b) with |x_a - x_b| < K::support * max(h_a, h_b) at the last RHS:
   // the pair interactions the force loop evaluated.
   std::size_t interacting_pairs() const { return interacting_pairs_; }
@@ -91,6 +93,21 @@ class SpmhdScheme final : public OdeSystem {
     return in_particle_order(cleaning_speeds_, 1, out_cleaning_speeds_);
   }
 
+  // Self-gravity of the most recent rhs() (or evaluate()): the potential energy (1/2) sum m Phi
+  // (self terms included; 0 without gravity) and the potentials per unit mass, particle order.
+  Real potential_energy() const { return potential_energy_; }
+  // Sink particles (options().sink_particles): their count in the state.
+  std::size_t sinks() const { return layout_.particles(Species::Sink); }
+  // A new particle set between steps: the gas particles kept[i] (old numbering, ascending or in
+  // any order) become particles i, and the state holds `sinks` sink particles. Their h carry
+  // over as first guesses; the neighbour lists are rebuilt at the next evaluation. The caller
+  // moves the state (resize_species) and the stepper (Stepper::resize).
+  void change_particles(const std::vector<std::size_t>& kept, std::size_t sinks);
+
+  // The barotropic EOS (options().barotropic), or nullptr for the adiabatic gas.
+  const BarotropicEos* barotropic_eos() const { return eos_ ? &*eos_ : nullptr; }
+  const std::vector<Real>& potential() const { return in_particle_order(gravity_potential_, 1, out_potential_); }
+
   // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
   // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
   int evaluate(Real t, const Real* y) noexcept;
@@ -108,6 +125,11 @@ class SpmhdScheme final : public OdeSystem {
   void euler_potential_field(const Real* x, const Real* alpha);
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
+  void gravity_pass(Real* ydot);                   // src/schemes/spmhd/spmhd_gravity.cpp
+  void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
+  void allocate_per_particle();
+  void gravitational_zeta();                       // zeta_a / Omega_a of the grad-h term
+  Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
 
   // The per-slot array `slots` (comps per particle) in particle order, cached per RHS.
   struct ParticleOrderCache {
@@ -125,10 +147,11 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> x_from_state_, v_, u_, psi_, alpha_;  // inputs gathered from the state (slot order)
   long version_ = 0;                                      // bumped by every prepare()
   mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_,
-      out_cleaning_speeds_;
+      out_cleaning_speeds_, out_potential_;
   SpmhdOptions opt_;
   StateLayout layout_;
-  NeighbourSearch<D> ns_;
+  // the cell grid, or a kd-tree when the list radii span decades (a collapse): neighbours/neighbour_method.hpp
+  AdaptiveNeighbourSearch<D> ns_;
   bool built_ = false;
   // x_: the fixed positions, or those of the last prepare() (the density solve is skipped when the
   // state's positions equal them bit for bit). Slot order, as all below.
@@ -154,6 +177,14 @@ class SpmhdScheme final : public OdeSystem {
   std::size_t interacting_pairs_ = 0;
   double pairs_total_ = 0, h_iterations_ = 0;
   Real cleaning_speed_ = 0;         // global c_h (the largest c_h,a with local_ch)
+  // Self-gravity (opt_.self_gravity): the solver, its accelerations (D x n) and potentials, and
+  // zeta_a / Omega_a of the grad-h term, slot order.
+  std::optional<BarotropicEos> eos_;  // opt_.barotropic
+  std::unique_ptr<SelfGravity> gravity_;
+  std::vector<Real> gravity_acc_, gravity_potential_, zeta_over_omega_;
+  SinkGasGravity<K> sink_gas_;          // sink-gas gravity (opt_.sink_particles)
+  std::vector<Real> sink_acc_, gas_from_sinks_, sink_potential_;
+  Real potential_energy_ = 0;
   long rhs_calls_ = 0;
   long builds_ = 0;
   std::string error_;

@@ -1,0 +1,16 @@
+#pragma once
+// The largest displacement of n particles from reference positions (minimum image when a box is
+// given): the Verlet-skin validity check of the neighbour searches.
+#include <cstddef>
+#include <optional>
+
+#include "sphark/core/types.hpp"
+#include "sphark/neighbours/periodic_box.hpp"
+
+namespace sphark {
+
+// max_i |x_i - ref_i|, both D values per particle; OpenMP-parallel.
+template <int D>
+Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box);
+
+}  // namespace sphark

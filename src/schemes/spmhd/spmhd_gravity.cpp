@@ -1,0 +1,88 @@
+// Self-gravity of the SPMHD gas (3D): the kernel-softened pair forces with softening length =
+// each particle's own h, from the tree or direct summation (gravity/self_gravity.hpp), plus the
+// gravitational grad-h term that makes the force the gradient of the energy while h adapts
+// (Price & Monaghan 2007, §3; gravity/gravity_grad_h.hpp):
+//   a_a += -(G/2) sum_b m_b [ zeta_a/Omega_a grad_a W_ab(h_a) + zeta_b/Omega_b grad_a W_ab(h_b) ]
+//   zeta_a = (dh_a/drho_a) sum_b m_b dphi(r_ab, h_a)/dh_a   (b = a included)
+// The pair sums run over the scheme's neighbour lists (minimum image in a periodic box; the tree
+// uses the positions as given: isolated gravity, see docs/gravity.md). Gather form: each particle
+// writes only its own acceleration, results independent of the thread count.
+#include <cmath>
+#include <limits>
+
+#include "sphark/core/profile.hpp"
+#include "sphark/gravity/gravity_grad_h.hpp"
+#include "sphark/kernels/kernel_list.hpp"
+#include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+
+namespace sphark {
+
+template <int D, class K>
+void SpmhdScheme<D, K>::gravitational_zeta() {
+  if constexpr (D == 3) {
+    const NeighbourList& L = ns_.list();
+    const Real* x = x_.data();
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::size_t a = 0; a < n_; ++a) {
+      const Real ha = h_[a], reach2 = (K::support * ha) * (K::support * ha);
+      Real sum = zeta_init<K>(ms_[a], ha);
+      for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
+        const std::size_t b = L.indices[k];
+        const Real r2 = ns_.separation(x, a, b).squaredNorm();
+        if (r2 < reach2) sum += zeta_pair<K>(ms_[b], std::sqrt(r2), ha);
+      }
+      zeta_over_omega_[a] = zeta_finish(sum, ha, rho_[a]) / omega_[a];
+    }
+  }
+}
+
+template <int D, class K>
+void SpmhdScheme<D, K>::gravity_pass(Real* ydot) {
+  if constexpr (D == 3) {
+    ScopedPhase timer(Phase::Forces);
+    const GravitySources src{x_.data(), ms_.data(), h_.data(), n_};
+    potential_energy_ = gravity_->compute(src, gravity_acc_.data(), gravity_potential_.data());
+    gravitational_zeta();
+    const NeighbourList& L = ns_.list();
+    const Real* x = x_.data();
+    Real* dv_dt = ydot + layout_.offset(Field::Velocity);
+    const Real G = opt_.G;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::size_t a = 0; a < n_; ++a) {
+      const Real ha = h_[a];
+      Vec<3> acc = Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * a);
+      for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
+        const std::size_t b = L.indices[k];
+        const Vec<3> x_ab = ns_.separation(x, a, b);
+        const Real r = x_ab.norm(), reach = K::support * std::max(ha, h_[b]);
+        if (r >= reach || r == 0) continue;
+        acc += grad_h_gravity_pair<K>(G, ms_[b], x_ab, r, ha, h_[b], zeta_over_omega_[a], zeta_over_omega_[b]);
+      }
+      Eigen::Map<Vec<3>>(dv_dt + 3 * perm_[a]) += acc;
+    }
+    ++version_;  // the potentials changed (particle-order caches)
+  }
+}
+
+// min_a force_courant sqrt(h_a / |dv_a/dt|) of a derivative (the force criterion; +inf if a = 0).
+template <int D, class K>
+Real SpmhdScheme<D, K>::force_time_step(const Real* ydot) const {
+  const Real* dv_dt = ydot + layout_.offset(Field::Velocity);
+  Real dt = std::numeric_limits<Real>::infinity();
+  for (std::size_t a = 0; a < n_; ++a) {
+    const Real acc = Eigen::Map<const Vec<D>>(dv_dt + D * perm_[a]).norm();
+    if (acc > 0) dt = std::min(dt, opt_.force_courant * std::sqrt(h_[a] / acc));
+  }
+  return dt;
+}
+
+#define SPHARK_SPMHD_GRAVITY(D, K)                          \
+  template void SpmhdScheme<D, K>::gravitational_zeta();   \
+  template void SpmhdScheme<D, K>::gravity_pass(Real*);    \
+  template Real SpmhdScheme<D, K>::force_time_step(const Real*) const;
+#define SPHARK_SPMHD_GRAVITY_2D_3D(K) SPHARK_SPMHD_GRAVITY(2, K<2>) SPHARK_SPMHD_GRAVITY(3, K<3>)
+SPHARK_KERNELS(SPHARK_SPMHD_GRAVITY_2D_3D)
+#undef SPHARK_SPMHD_GRAVITY_2D_3D
+#undef SPHARK_SPMHD_GRAVITY
+
+}  // namespace sphark

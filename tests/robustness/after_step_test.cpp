@@ -1,0 +1,117 @@
+// The time loop's after_step hook (run/time_loop.hpp): a system whose particle count changes
+// between steps — here independent unit oscillators x'' = -x, one of them removed at t = 0.5 —
+// continues through Stepper::resize. The survivors end where an uninterrupted run ends: bit for
+// bit with the fixed-step leapfrog (its next kick is evaluated afresh at the resized state, which
+// for a force independent of v is the same), within the tolerance with adaptive Dormand-Prince.
+// The checkpoint written at the end carries the new particle count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "sphark/run/time_loop.hpp"
+#include "../support/temp_dir.hpp"
+
+using namespace sphark;
+using sphark::test::TempDir;
+
+namespace {
+class Oscillators final : public OdeSystem {
+ public:
+  explicit Oscillators(std::size_t n) : layout_(layout_for(n)) {
+    for (std::size_t i = 0; i < n; ++i) omega2_.push_back(1.0 + 0.1 * static_cast<Real>(i));  // frequencies differ
+  }
+  static StateLayout layout_for(std::size_t n) {
+    StateLayout L(n);
+    L.add(Field::Position, 1).add(Field::Velocity, 1);
+    return L;
+  }
+  void keep(const std::vector<std::size_t>& kept) {  // the particles kept[i] become i
+    std::vector<Real> w;
+    for (std::size_t i : kept) w.push_back(omega2_[i]);
+    omega2_ = w;
+    layout_ = layout_for(kept.size());
+  }
+  const StateLayout& layout() const { return layout_; }
+  std::size_t size() const override { return layout_.size(); }
+  const StateLayout* state_layout() const override { return &layout_; }
+  int rhs(Real, const Real* y, Real* ydot) override {
+    const std::size_t n = layout_.particles();
+    for (std::size_t i = 0; i < n; ++i) {
+      ydot[i] = y[n + i];
+      ydot[n + i] = -omega2_[i] * y[i];
+    }
+    return 0;
+  }
+  std::size_t position_offset() const override { return 0; }
+  std::size_t velocity_offset() const override { return layout_.particles(); }
+  std::size_t position_size() const override { return layout_.particles(); }
+
+ private:
+  StateLayout layout_;
+  std::vector<Real> omega2_;
+};
+
+struct Outcome {
+  std::vector<Real> y;
+  std::size_t particles;
+  std::size_t checkpoint_particles;
+};
+
+Outcome run(const std::string& method, bool remove, const std::filesystem::path& dir) {
+  Oscillators sys(4);
+  std::vector<Real> y0(sys.size(), 0);
+  for (std::size_t i = 0; i < 4; ++i) y0[i] = 1.0 + 0.25 * static_cast<Real>(i);
+  StepperOptions o;
+  o.method = method;
+  o.rtol = 1e-9;
+  o.atol = {1e-12};
+  if (method == "leapfrog") o.fixed_dt = 1.0 / 64;
+  TimeLoopSettings s;
+  s.program = "after_step_test";
+  s.t_end = 2;
+  s.sample_every = 0.25;
+  s.diagnostics_csv = dir / "d.csv";
+  s.columns = {"t"};
+  s.checkpoint = dir / "c.bin";
+  s.checkpoint_every = 2;
+  s.quiet = true;
+  TimeLoopHooks h;
+  h.diagnostics = [](Real t, const Real*, const StepperStats&) { return std::vector<Real>{t}; };
+  bool removed = false;
+  if (remove)
+    h.after_step = [&](Real t, const Real* y) -> std::optional<TimeLoopHooks::Resize> {
+      if (removed || t < 0.5) return std::nullopt;
+      removed = true;
+      const StateLayout from = sys.layout(), to = from.with_count(Species::Gas, 3);
+      std::vector<Real> next = resize_species(from, y, to, Species::Gas, {1, 2, 3});  // particle 0 leaves
+      sys.keep({1, 2, 3});
+      return TimeLoopHooks::Resize{to, std::move(next), {}};
+    };
+  const TimeLoopResult r = run_time_loop(sys, sys.layout(), o, y0, s, h);
+  EXPECT_TRUE(r.ok()) << r.failure;
+  const std::size_t n = sys.layout().particles();
+  std::vector<Real> survivors;  // x then v of the particles 1, 2, 3 of the original numbering
+  const std::vector<Real> y = load_checkpoint(dir / "c.bin").y;
+  const std::size_t skip = n == 4 ? 1 : 0;
+  for (std::size_t i = skip; i < n; ++i) survivors.push_back(y[i]);
+  for (std::size_t i = skip; i < n; ++i) survivors.push_back(y[n + i]);
+  return {survivors, n, load_checkpoint(dir / "c.bin").particles()};
+}
+}  // namespace
+
+TEST(AfterStep, ARunThatLosesAParticleContinuesAsAnUninterruptedOne) {
+  for (const std::string method : {"leapfrog", "ARKODE_DORMAND_PRINCE_7_4_5"}) {
+    SCOPED_TRACE(method);
+    TempDir a, b;
+    const Outcome whole = run(method, false, a.path()), cut = run(method, true, b.path());
+    EXPECT_EQ(cut.particles, 3u);
+    EXPECT_EQ(cut.checkpoint_particles, 3u);  // the checkpoint carries the new count
+    ASSERT_EQ(whole.y.size(), cut.y.size());
+    if (method == "leapfrog") {
+      EXPECT_EQ(std::memcmp(whole.y.data(), cut.y.data(), whole.y.size() * sizeof(Real)), 0);
+    } else {
+      for (std::size_t k = 0; k < whole.y.size(); ++k) EXPECT_NEAR(cut.y[k], whole.y[k], 1e-7);
+    }
+  }
+}
