@@ -84,3 +84,40 @@ TEST(KernelList, EveryNameSelectsItsKernel) {
     for (const std::string& name : names) EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << name;
   }
 }
+
+// The branch-free unit-h forms of the pair loops' lanes (kernels.hpp) equal the kernels at h = 1
+// to round-off, on one lane and on two (simd::Real2), inside the support and beyond (exact 0).
+// Round-off: the spline forms add clamped powers that cancel, at worst (the quintic at q -> 0)
+// (3^5 + 6 2^5 + 15) / 66 = 6.8 times the value, so the bound is 32 eps of the kernel's scale;
+// f'/q divides such a sum by q (the quintic, as kernels.hpp's own form): 32 eps / min(q, 1).
+namespace {
+template <class K, int D>
+void check_unit_forms() {
+  constexpr Real tol = 32 * 2.220446049250313e-16;
+  const Real w0 = std::abs(K::w(0, 1.0)), f0 = std::abs(K::f_over_r(0, 1.0));
+  for (int i = 1; i <= 400; ++i) {
+    const Real q = 0.00875 * i;  // 0.00875 .. 3.5
+    EXPECT_NEAR(K::unit_w(q), K::w(q, 1.0), tol * w0) << K::name << " q=" << q;
+    EXPECT_NEAR(K::unit_q_dw(q), q * q * K::f_over_r(q, 1.0), tol * f0) << K::name << " q=" << q;
+    EXPECT_NEAR(K::unit_f_over_r(q, 1 / q), K::f_over_r(q, 1.0), tol * f0 / std::min(q, 1.0)) << K::name << " q=" << q;
+    const simd::Real2 qq{q, q + 0.001};
+    const simd::Real2 w = K::unit_w(qq), f = K::unit_f_over_r(qq, 1.0 / qq);
+    EXPECT_EQ(w[0], K::unit_w(q));
+    EXPECT_EQ(f[1], K::unit_f_over_r(q + 0.001, 1 / (q + 0.001)));
+    if (q >= K::support) {
+      EXPECT_EQ(K::unit_w(q), 0.0);
+      EXPECT_EQ(K::unit_f_over_r(q, 1 / q), 0.0);
+    }
+  }
+}
+template <int D, class... K>
+void check_unit_forms_of(KernelTypes<K...>) {
+  (check_unit_forms<K, D>(), ...);
+}
+}  // namespace
+
+TEST(Kernels, UnitFormsForLanesEqualTheKernels) {
+  check_unit_forms_of<1>(KernelList<1>{});
+  check_unit_forms_of<2>(KernelList<2>{});
+  check_unit_forms_of<3>(KernelList<3>{});
+}

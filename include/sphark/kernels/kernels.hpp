@@ -12,10 +12,17 @@
 //   K::dw_dr(r, h)        dW/dr   (the gradient is  grad_a W_ab = dw_dr * (x_a - x_b) / r)
 //   K::f_over_r(r, h)     (dW/dr) / r, finite at r = 0 (what pair loops use)
 //   K::name               the name used on the command line
+// and, for the pair loops' lanes (S = Real or a lane type of simd/lanes.hpp), branch-free forms
+// at unit smoothing length, zero beyond the support (W(r, h) = unit_w(r/h) / h^D, etc.):
+//   K::unit_w(q)                  sigma_D f(q)
+//   K::unit_q_dw(q)               sigma_D q f'(q)
+//   K::unit_f_over_r(q, inv_q)    sigma_D f'(q) / q   (inv_q = 1/q; only the splines use it)
+// They equal the forms above to round-off (tests/unit/kernels_test.cpp).
 #include <cmath>
 #include <string_view>
 
 #include "sphark/core/types.hpp"
+#include "sphark/simd/lanes.hpp"
 
 namespace sphark {
 
@@ -37,6 +44,13 @@ struct RadialKernel {
   static Real w(Real r, Real h) { return norm(h) * Shape::f(r / h); }
   static Real dw_dr(Real r, Real h) { return norm(h) / h * Shape::df(r / h); }
   static Real f_over_r(Real r, Real h) { return norm(h) / (h * h) * Shape::df_over_q(r / h); }
+
+  template <class S>
+  static S unit_w(S q) { return Shape::template sigma<D>() * Shape::f_lanes(q); }
+  template <class S>
+  static S unit_q_dw(S q) { return Shape::template sigma<D>() * Shape::q_df_lanes(q); }
+  template <class S>
+  static S unit_f_over_r(S q, S inv_q) { return Shape::template sigma<D>() * Shape::df_over_q_lanes(q, inv_q); }
 };
 
 struct CubicSplineShape {
@@ -57,6 +71,22 @@ struct CubicSplineShape {
     return 0;
   }
   static Real df(Real q) { return q < 1 ? q * df_over_q(q) : (q < 2 ? -0.75 * (2 - q) * (2 - q) : 0); }
+  // branch-free, a = max(2 - q, 0), b = max(1 - q, 0): f = a^3/4 - b^3, f' = 3 b^2 - 3 a^2 / 4
+  template <class S>
+  static S f_lanes(S q) {
+    const S a = simd::positive_part(2 - q), b = simd::positive_part(1 - q);
+    return 0.25 * a * a * a - b * b * b;
+  }
+  template <class S>
+  static S q_df_lanes(S q) {
+    const S a = simd::positive_part(2 - q), b = simd::positive_part(1 - q);
+    return q * (3 * b * b - 0.75 * a * a);
+  }
+  template <class S>
+  static S df_over_q_lanes(S q, S inv_q) {  // the inner form without the division by q
+    const S a = simd::positive_part(2 - q);
+    return q < 1 ? -3 + 2.25 * q : -0.75 * a * a * inv_q;
+  }
 };
 
 struct QuinticSplineShape {
@@ -84,6 +114,23 @@ struct QuinticSplineShape {
   }
   // df/q near q = 0: df(q) = -120 q + O(q^3) for the M6 spline, so the limit is -120.
   static Real df_over_q(Real q) { return q > 1e-12 ? df(q) / q : -120.0; }
+  // branch-free, a = max(3 - q, 0), b = max(2 - q, 0), c = max(1 - q, 0)
+  template <class S>
+  static S f_lanes(S q) {
+    const S a = simd::positive_part(3 - q), b = simd::positive_part(2 - q), c = simd::positive_part(1 - q);
+    const S a2 = a * a, b2 = b * b, c2 = c * c;
+    return a2 * a2 * a - 6 * (b2 * b2 * b) + 15 * (c2 * c2 * c);
+  }
+  template <class S>
+  static S df_lanes(S q) {
+    const S a = simd::positive_part(3 - q), b = simd::positive_part(2 - q), c = simd::positive_part(1 - q);
+    const S a2 = a * a, b2 = b * b, c2 = c * c;
+    return -5 * (a2 * a2) + 30 * (b2 * b2) - 75 * (c2 * c2);
+  }
+  template <class S>
+  static S q_df_lanes(S q) { return q * df_lanes(q); }
+  template <class S>
+  static S df_over_q_lanes(S q, S inv_q) { return q > 1e-12 ? df_lanes(q) * inv_q : simd::broadcast<S>(-120.0); }
 };
 
 // Wendland functions with support H = 2h, written in t = q / 2 in [0, 1).
@@ -111,6 +158,17 @@ struct WendlandC2Shape {
     // 1D: d/dt = -12 t (1-t)^2 ;  2D/3D: d/dt = -20 t (1-t)^3 ;  d/dq = d/dt / 2 ;  / q = / (2t)
     return D == 1 ? -3.0 * ipow(1 - t, 2) : -5.0 * ipow(1 - t, 3);
   }
+  // branch-free, s = max(1 - t, 0)
+  template <int D, class S>
+  static S f_lanes_d(S q) {
+    const S t = 0.5 * q, s = simd::positive_part(1 - t), s2 = s * s;
+    return D == 1 ? s2 * s * (1 + 3 * t) : s2 * s2 * (1 + 4 * t);
+  }
+  template <int D, class S>
+  static S df_over_q_lanes_d(S q) {
+    const S s = simd::positive_part(1 - 0.5 * q);
+    return D == 1 ? -3.0 * (s * s) : -5.0 * (s * s * s);
+  }
 };
 
 struct WendlandC4Shape {
@@ -136,6 +194,16 @@ struct WendlandC4Shape {
     using kernel_detail::ipow;
     // 1D: d/dt = -14 t (1-t)^4 (1 + 4t);  2D/3D: d/dt = -56/3 t (1-t)^5 (1 + 5t)
     return D == 1 ? -3.5 * ipow(1 - t, 4) * (1 + 4 * t) : -14.0 / 3.0 * ipow(1 - t, 5) * (1 + 5 * t);
+  }
+  template <int D, class S>
+  static S f_lanes_d(S q) {
+    const S t = 0.5 * q, s = simd::positive_part(1 - t), s2 = s * s, s4 = s2 * s2;
+    return D == 1 ? s4 * s * (1 + 5 * t + 8 * t * t) : s4 * s2 * (1 + 6 * t + 35.0 / 3.0 * t * t);
+  }
+  template <int D, class S>
+  static S df_over_q_lanes_d(S q) {
+    const S t = 0.5 * q, s = simd::positive_part(1 - t), s2 = s * s, s4 = s2 * s2;
+    return D == 1 ? -3.5 * s4 * (1 + 4 * t) : -14.0 / 3.0 * (s4 * s) * (1 + 5 * t);
   }
 };
 
@@ -164,6 +232,17 @@ struct WendlandC6Shape {
     return D == 1 ? -1.5 * ipow(1 - t, 6) * (3 + 18 * t + 35 * t * t)
                   : -5.5 * ipow(1 - t, 7) * (1 + 7 * t + 16 * t * t);
   }
+  template <int D, class S>
+  static S f_lanes_d(S q) {
+    const S t = 0.5 * q, s = simd::positive_part(1 - t), s2 = s * s, s4 = s2 * s2;
+    return D == 1 ? s4 * s2 * s * (1 + 7 * t + 19 * t * t + 21 * t * t * t)
+                  : s4 * s4 * (1 + 8 * t + 25 * t * t + 32 * t * t * t);
+  }
+  template <int D, class S>
+  static S df_over_q_lanes_d(S q) {
+    const S t = 0.5 * q, s = simd::positive_part(1 - t), s2 = s * s, s4 = s2 * s2;
+    return D == 1 ? -1.5 * (s4 * s2) * (3 + 18 * t + 35 * t * t) : -5.5 * (s4 * s2 * s) * (1 + 7 * t + 16 * t * t);
+  }
 };
 
 // Wendland shapes depend on D; bind D so that RadialKernel sees f, df, df_over_q.
@@ -176,6 +255,12 @@ struct WendlandBound {
   static Real f(Real q) { return W::template f_d<D>(q); }
   static Real df_over_q(Real q) { return W::template df_over_q_d<D>(q); }
   static Real df(Real q) { return q * df_over_q(q); }
+  template <class S>
+  static S f_lanes(S q) { return W::template f_lanes_d<D>(q); }
+  template <class S>
+  static S q_df_lanes(S q) { return q * q * W::template df_over_q_lanes_d<D>(q); }
+  template <class S>
+  static S df_over_q_lanes(S q, S /*inv_q*/) { return W::template df_over_q_lanes_d<D>(q); }
 };
 
 template <int D> using CubicSpline = RadialKernel<D, CubicSplineShape>;

@@ -6,16 +6,20 @@
 #include <optional>
 
 #include "sphark/core/types.hpp"
+#include "sphark/simd/lanes.hpp"
 
 namespace sphark {
 
 // Round to the nearest integer (ties to even), equal to std::nearbyint in the default rounding
 // mode for |x| < 2^51. Without SSE4.1 std::nearbyint is a libm call; this is two additions
 // (x + 1.5 * 2^52 lies where the spacing of doubles is 1). Not folded away without -ffast-math.
-inline Real round_to_nearest(Real x) {
+// (For lanes of values too, simd/lanes.hpp.)
+template <class S>
+inline S round_to_nearest_lanes(S x) {
   constexpr Real kShift = 6755399441055744.0;  // 1.5 * 2^52
   return (x + kShift) - kShift;
 }
+inline Real round_to_nearest(Real x) { return round_to_nearest_lanes(x); }
 
 template <int D>
 struct PeriodicBox {
@@ -66,6 +70,7 @@ struct PeriodicBox {
 template <int D>
 struct MinimumImage {
   Vec<D> L = Vec<D>::Zero(), inv_L = Vec<D>::Zero();
+  bool periodic = false;  // along some axis
   MinimumImage() = default;
   explicit MinimumImage(const std::optional<PeriodicBox<D>>& box) {
     if (!box) return;
@@ -73,6 +78,7 @@ struct MinimumImage {
       if (box->periodic[k]) {
         L[k] = box->hi[k] - box->lo[k];
         inv_L[k] = 1.0 / L[k];
+        periodic = true;
       }
   }
   // x_a - x_b reduced to the nearest periodic image.
@@ -82,6 +88,13 @@ struct MinimumImage {
       d[k] = xa[k] - xb[k];
       d[k] -= L[k] * round_to_nearest(d[k] * inv_L[k]);
     }
+    return d;
+  }
+  // The same for lanes of separations x_a - x_b (simd/lanes.hpp); nothing without a periodic axis.
+  template <class S>
+  simd::LaneVec<S, D> operator()(simd::LaneVec<S, D> d) const {
+    if (periodic)
+      for (int k = 0; k < D; ++k) d[k] -= L[k] * round_to_nearest_lanes(d[k] * inv_L[k]);
     return d;
   }
 };

@@ -14,29 +14,33 @@
 // These are adjoint to each other under the energy inner products of eqs. (21)/(37), which is why
 // the cleaning subsystem conserves energy exactly when both are used together. The pair terms
 // below are the summands; callers accumulate them over the neighbour list. Gradients may be
-// vectors or RadialGradient (pair_geometry.hpp): the formula is the same, written once.
+// vectors or RadialGradient (pair_geometry.hpp), scalars Real or lanes of pairs (simd/lanes.hpp,
+// with LaneVec gradients): the formula is the same, written once.
+#include <type_traits>
+
 #include "sphark/core/types.hpp"
 
 namespace sphark {
 
 // Summand of the difference divergence: m_b (A_a - A_b) . grad_a W_ab(h_a).
 // div A_a = -(1 / (Omega_a rho_a)) * sum of these.
-template <class VA, class VB, class G>
-inline Real difference_divergence_term(Real m_b, const VA& A_a, const VB& A_b, const G& grad_w_a) {
+template <class S, class VA, class VB, class G>
+inline S difference_divergence_term(S m_b, const VA& A_a, const VB& A_b, const G& grad_w_a) {
   return m_b * (A_a - A_b).dot(grad_w_a);
 }
 
 // Summand of the symmetric gradient (per unit density):
 // m_b ( q_a grad_a W_ab(h_a) + q_b grad_a W_ab(h_b) ),  q = psi / (Omega rho^2).
 // grad psi_a / rho_a = sum of these.
-template <class G>
-inline G symmetric_gradient_term(Real m_b, Real q_a, const G& grad_w_a, Real q_b, const G& grad_w_b) {
+template <class S, class G>
+inline G symmetric_gradient_term(S m_b, std::type_identity_t<S> q_a, const G& grad_w_a, std::type_identity_t<S> q_b,
+                                 const G& grad_w_b) {
   return m_b * (q_a * grad_w_a + q_b * grad_w_b);
 }
 // Summand of the difference gradient: m_b (f_b - f_a) grad_a W_ab(h_a).
 // grad f_a = (1 / (Omega_a rho_a)) * sum of these.
-template <class G>
-inline G difference_gradient_term(Real m_b, Real f_a, Real f_b, const G& grad_w_a) {
+template <class S, class G>
+inline G difference_gradient_term(S m_b, std::type_identity_t<S> f_a, std::type_identity_t<S> f_b, const G& grad_w_a) {
   return m_b * (f_b - f_a) * grad_w_a;
 }
 

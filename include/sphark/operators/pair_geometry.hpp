@@ -1,5 +1,7 @@
 #pragma once
 // What every pair operator needs about a pair (a, b): separation, distance, kernel gradient.
+#include <type_traits>
+
 #include "sphark/core/types.hpp"
 
 namespace sphark {
@@ -24,21 +26,22 @@ inline PairGeometry<D> pair_geometry(const Vec<D>& x_ab, Real h) {
 // the scalars are combined first, then one product with x_ab (fewer operations, other rounding
 // than with the gradients as vectors).
 // (x_ab is referred to, not copied: a RadialGradient lives as long as the pair's x_ab.)
-template <int D>
+// (S, V: Real and Vec<D>, or lanes of pairs, simd/lanes.hpp.)
+template <int D, class S = Real, class V = Vec<D>>
 struct RadialGradient {
-  Real factor;
-  const Vec<D>& x_ab;
-  Vec<D> vector() const { return factor * x_ab; }
+  S factor;
+  const V& x_ab;
+  V vector() const { return factor * x_ab; }
 };
 
-template <int D>
-inline RadialGradient<D> operator*(Real s, const RadialGradient<D>& g) {
+template <int D, class S, class V>
+inline RadialGradient<D, S, V> operator*(std::type_identity_t<S> s, const RadialGradient<D, S, V>& g) {
   return {s * g.factor, g.x_ab};
 }
 
 // Both gradients must belong to the same pair (same x_ab).
-template <int D>
-inline RadialGradient<D> operator+(const RadialGradient<D>& g1, const RadialGradient<D>& g2) {
+template <int D, class S, class V>
+inline RadialGradient<D, S, V> operator+(const RadialGradient<D, S, V>& g1, const RadialGradient<D, S, V>& g2) {
   return {g1.factor + g2.factor, g1.x_ab};
 }
 

@@ -4,7 +4,8 @@
 // Speed: each particle's Newton iteration needs the sums at several trial h. The candidate
 // neighbours (r, m_b) are gathered ONCE per particle into a per-thread buffer, and every Newton
 // step sums over that buffer with the unit-h kernel shape (one 1/h per step, no filter: the
-// shape vanishes beyond the support). Against sphark::solve_density: round-off differences.
+// shape vanishes beyond the support), in lanes (spmhd_density_sums.hpp; the path of
+// simd/dispatch.hpp). Against sphark::solve_density: round-off differences.
 #include <omp.h>
 
 #include <algorithm>
@@ -16,7 +17,8 @@
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
-#include "sphark/schemes/spmhd/unit_kernel.hpp"
+#include "sphark/simd/dispatch.hpp"
+#include "spmhd_density_sums.hpp"
 
 namespace sphark {
 
@@ -124,49 +126,54 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
 template <int D, class K>
 typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x) {
   const int threads = omp_get_max_threads();
-  const std::size_t stride = 2 * max_list_;
+  const int lanes = simd_lanes(pair_loop_simd());
+  const std::size_t room = static_cast<std::size_t>(lanes) * (max_list_ + 1), stride = 2 * room;
   if (cand_.size() < stride * static_cast<std::size_t>(threads)) cand_.resize(stride * threads);
   const NeighbourList& L = ns_.list();
   const Real* m = ms_.data();
   const MinimumImage<D> image(ns_.box());
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
-  const Real w0 = K::w(0, 1.0);  // sigma f(0)
+  using spmhd_detail::DensitySums;
+  DensitySums (*sums)(const Real*, const Real*, std::size_t, Real, Real) = spmhd_detail::density_sums<Real, D, K>;
+  if (pair_loop_simd() == PairLoopSimd::Avx512) sums = spmhd_detail::density_sums_avx512<D, K>;
+  if (pair_loop_simd() == PairLoopSimd::Avx2) sums = spmhd_detail::density_sums_avx2<D, K>;
+  if (pair_loop_simd() == PairLoopSimd::Sse2) sums = spmhd_detail::density_sums<simd::Real2, D, K>;
   std::size_t not_converged = 0, outside = 0, iterations = 0;
   Real h_max = 0;
 #pragma omp parallel reduction(+ : not_converged, outside, iterations) reduction(max : h_max)
   {
     Real* rc = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
-    Real* mc = rc + max_list_;
+    Real* mc = rc + room;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n_; ++i) {
       const Real h_list = list_h_served_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
-      // Candidates: every listed neighbour that any trial h <= h_list can reach, in list order.
-      std::size_t nc = 0;
+      // Candidates: every listed neighbour that any trial h <= h_list can reach, in list order,
+      // neighbour j in lane (particle number of j) mod W: entry c W + l of lane l. Each lane's
+      // sum then runs over the same neighbours in the same order whatever other candidates the
+      // list holds (those add exact zeros): a reused list gives the h of a fresh one, bit for bit.
+      std::size_t count[8] = {};
       for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
         const std::size_t j = L.indices[k];
         const Real r2 = image(x + D * i, x + D * j).squaredNorm();
         if (r2 >= r_list2) continue;
-        rc[nc] = std::sqrt(r2);
-        mc[nc] = m[j];
-        ++nc;
+        const std::size_t l = perm_[j] & (lanes - 1), c = count[l]++ * lanes + l;  // lanes: 1, 2, 4 or 8
+        rc[c] = std::sqrt(r2);
+        mc[c] = m[j];
       }
+      const std::size_t blocks = *std::max_element(count, count + lanes), nc = blocks * lanes;
+      for (int l = 0; l < lanes; ++l)
+        for (std::size_t c = count[l]; c < blocks; ++c) rc[c * lanes + l] = mc[c * lanes + l] = 0;
       // rho(h) and drho/dh at smoothing length hh, self term first (seed 000, eq. (4)), from the
       // unit-h shape: W = w1(q) / h^D and dW/dh = -(D W + r dW/dr) / h = -(D w1 + q^2 f1) / h^(D+1),
-      // with w1 = K::w(q, 1), f1 = K::f_over_r(q, 1), q = r / h (unit_kernel.hpp). Beyond the
+      // with w1 = K::unit_w(q), q^2 f1 = K::unit_q_dw(q), q = r / h (kernels.hpp). Beyond the
       // support w1 = f1 = 0.
       auto density_at = [&](Real hh, Real& rho, Real& drho_dh) {
         const Real hinv = 1.0 / hh;
-        Real s0 = m[i] * w0, s1 = D * m[i] * w0;
-        for (std::size_t c = 0; c < nc; ++c) {
-          Real w1, q2f1;
-          UnitKernel<K>::w_and_q2f(rc[c] * hinv, w1, q2f1);
-          s0 += mc[c] * w1;
-          s1 += mc[c] * (D * w1 + q2f1);
-        }
+        const DensitySums s = sums(rc, mc, nc, hinv, m[i]);
         Real hd = 1;
         for (int k = 0; k < D; ++k) hd *= hinv;
-        rho = s0 * hd;
-        drho_dh = -s1 * hd * hinv;
+        rho = s.s0 * hd;
+        drho_dh = -s.s1 * hd * hinv;
       };
       const Real m_eta = m[i] * eta_d;
       bool converged = false;

@@ -1,39 +1,39 @@
 // The SPMHD pair loop (seed 000, §II), gather form: each particle a sums over its own
 // neighbours b and writes only its own derivatives (no races; results independent of threads).
-// Its shape is that of an SPH equation (as in PySPH): per particle, init (pair_loop_arrays and
-// PairSums), pair (add_pair: one call per operator of sphark/operators/, each citing its
-// equation) and finish (finish_particle).
+// Its shape is that of an SPH equation (as in PySPH): per particle, init (pair_loop_arrays: the
+// particle's record), pair (spmhd_pair_row.hpp, add_pairs: one call per operator of
+// sphark/operators/, each citing its equation, in lanes of W neighbours) and finish
+// (finish_particle).
 //
 // Speed: everything that depends on one particle only (1/h, the kernel-gradient scale, the
-// Maxwell stress over Omega rho^2, ...) is computed once per particle per RHS into arrays
+// Maxwell stress over Omega rho^2, ...) is computed once per particle per RHS into its record
 // (pair_loop_arrays); the pair loop works with D-vectors (kernel gradients have no component
 // beyond D) and the D x D block of the stress (the acceleration has D components).
+#include <omp.h>
+
 #include <cmath>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernel_list.hpp"
-#include "sphark/operators/conjugate_cleaning.hpp"
 #include "sphark/operators/mhd_operators.hpp"
-#include "sphark/operators/pair_geometry.hpp"
-#include "sphark/operators/pressure_force.hpp"
-#include "sphark/operators/signal_velocity_dissipation.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
-#include "sphark/schemes/spmhd/unit_kernel.hpp"
+#include "sphark/simd/dispatch.hpp"
+#include "spmhd_pair_row.hpp"
 
 namespace sphark {
 
 namespace {
 
 using mhd::Vec3;
+using spmhd_detail::PairSums;
+using spmhd_detail::Record;
 
-// What the pair loop reads, in slot order (prepare() and pair_loop_arrays() fill it).
-struct PairLoopInput {
-  const Real *x, *v, *u, *psi, *m, *h, *inv_h, *grad_scale, *rho, *omega, *P, *fast_speed, *B;
-  const Real *inv_omega_rho2, *stress_over_omega_rho2, *b_over_omega_rho2, *psi_over_omega_rho2;
-  const Real* cleaning_speeds;  // c_h,a
-  Real cleaning_speed;          // global c_h
+// What finish_particle reads, in slot order.
+struct FinishInput {
+  const Real *psi, *omega, *P, *inv_omega_rho2, *cleaning_speeds;
+  Real cleaning_speed;  // global c_h
   bool evolve, induction, cleaning, constrained, local_ch, subtract_monopole;
-  Real alpha_visc, beta_visc, alpha_u, alpha_b, sigma;
+  Real sigma;
 };
 
 // Where the pair loop writes: state derivatives (at particle perm[a]) and per-slot diagnostics.
@@ -43,92 +43,18 @@ struct PairLoopOutput {
   Real *div_b, *div_v;
 };
 
-// init: the sums of one particle a.
-template <int D>
-struct PairSums {
-  Vec<D> dv_dt = Vec<D>::Zero();     // (6) and viscosity; (9) subtracted at finish
-  Vec<D> grad_psi = Vec<D>::Zero();  // (23), or the difference gradient
-  mhd::Induction<D> induction;       // (7)
-  Vec3 resistive = Vec3::Zero();     // (10)
-  Real monopole = 0;                 // (9)
-  Real div_b = 0;                    // (20)
-  Real continuity = 0;               // sum_b m_b v_ab . g_a: div v (25) and the P dV work
-  Real du_dt_dissipation = 0;        // heating of viscosity, conductivity and resistivity
-};
-
-// Particle a's own quantities, loaded once.
+// Particle a's own quantities for finish.
 template <int D>
 struct ParticleA {
   std::size_t a;
-  Real h, inv_h, grad_scale, rho;
+  Real h, rho;
   Vec3 B;
-  Vec<D> v, b_over_omega_rho2;
-  Eigen::Matrix<Real, D, D> stress_over_omega_rho2;
+  Vec<D> v;
 };
-
-template <int D>
-Vec<D> velocity_of(const PairLoopInput& in, std::size_t i) {
-  return in.v ? Vec<D>(Eigen::Map<const Vec<D>>(in.v + D * i)) : Vec<D>(Vec<D>::Zero());
-}
-
-// pair: neighbour b of particle a, |x_ab| < support * max(h_a, h_b), x_ab != 0.
-template <int D, class K>
-inline void add_pair(PairSums<D>& s, const ParticleA<D>& pa, const PairLoopInput& in, std::size_t b,
-                     const Vec<D>& x_ab, Real r2) {
-  using MatD = Eigen::Matrix<Real, D, D>;
-  const std::size_t a = pa.a;
-  const Real r = std::sqrt(r2), inv_r = 1.0 / r;
-  // grad_a W_ab(h_a) = grad_factor_a x_ab, grad_a W_ab(h_b) = grad_factor_b x_ab
-  const Real grad_factor_a = pa.grad_scale * UnitKernel<K>::f_over_r(r * pa.inv_h, pa.h * inv_r);
-  const Real grad_factor_b = in.grad_scale[b] * UnitKernel<K>::f_over_r(r * in.inv_h[b], in.h[b] * inv_r);
-  const Vec<D> g_a = grad_factor_a * x_ab, g_b = grad_factor_b * x_ab;
-  const Real m_b = in.m[b];
-  const Vec3 B_b = Eigen::Map<const Vec3>(in.B + 3 * b), B_ab = pa.B - B_b;
-
-  s.div_b += difference_divergence_term(m_b, pa.B.template head<D>(), B_b.template head<D>(), g_a);  // eq. (20)
-  if (in.psi) {
-    if (in.constrained)  // eq. (23), the conjugate of (20)
-      s.grad_psi += symmetric_gradient_term(m_b, in.psi_over_omega_rho2[a], RadialGradient<D>{grad_factor_a, x_ab},
-                                            in.psi_over_omega_rho2[b], RadialGradient<D>{grad_factor_b, x_ab})
-                        .vector();
-    else
-      s.grad_psi += difference_gradient_term(m_b, in.psi[a], in.psi[b], g_a);
-  }
-  if (!in.evolve) return;
-
-  const Vec<D> v_ab = pa.v - velocity_of<D>(in, b);
-  s.dv_dt += mhd::maxwell_force_term(m_b, pa.stress_over_omega_rho2, g_a,
-                                     Eigen::Map<const MatD>(in.stress_over_omega_rho2 + D * D * b), g_b);  // eq. (6)
-  s.monopole += mhd::monopole_term(m_b, pa.b_over_omega_rho2, g_a,
-                                   Eigen::Map<const Vec<D>>(in.b_over_omega_rho2 + 3 * b), g_b);  // eq. (9)
-  s.continuity += continuity_term<D>(m_b, v_ab, g_a);  // eq. (25)
-  if (in.induction) s.induction.pair(m_b, v_ab, pa.B, g_a);  // eq. (7)
-
-  // Dissipation with the mean kernel gradient gbar = (g_a + g_b)/2: rhat . gbar = (F_a + F_b) r / 2.
-  const Vec<D> rhat = inv_r * x_ab;
-  const Real rhat_dot_gbar = 0.5 * (grad_factor_a + grad_factor_b) * r;
-  const Real inv_rho_ab = 1.0 / (0.5 * (pa.rho + in.rho[b]));
-  const Real w_ab = v_ab.dot(rhat);
-  if (in.alpha_visc > 0 && approaching(w_ab)) {
-    const ViscousPairTerm<D> visc = signal_velocity_viscosity_term<D>(
-        m_b, in.alpha_visc, in.beta_visc, in.fast_speed[a], in.fast_speed[b], w_ab, inv_rho_ab, rhat, rhat_dot_gbar);
-    s.dv_dt += visc.dv_dt;
-    s.du_dt_dissipation += visc.du_dt;
-  }
-  if (in.alpha_u > 0)
-    s.du_dt_dissipation +=
-        conductivity_term(m_b, in.alpha_u, in.P[a], in.P[b], in.u[a], in.u[b], inv_rho_ab, rhat_dot_gbar);
-  if (in.alpha_b > 0) {  // eq. (10)
-    const mhd::ResistivePairTerm res =
-        mhd::resistivity_term<D>(m_b, in.alpha_b, v_ab, w_ab, rhat, inv_rho_ab, B_ab, rhat_dot_gbar);
-    s.resistive += res.dB_dt;
-    s.du_dt_dissipation += res.du_dt;
-  }
-}
 
 // finish: particle a's derivatives from its sums.
 template <int D>
-inline void finish_particle(const PairSums<D>& s, const ParticleA<D>& pa, const PairLoopInput& in,
+inline void finish_particle(const PairSums<D>& s, const ParticleA<D>& pa, const FinishInput& in,
                             const PairLoopOutput& out) {
   const std::size_t a = pa.a, p = out.perm[a];
   const Real inv_omega_rho = 1.0 / (in.omega[a] * pa.rho);
@@ -157,25 +83,54 @@ inline void finish_particle(const PairSums<D>& s, const ParticleA<D>& pa, const 
 
 }  // namespace
 
+// init: everything that depends on one particle, once per RHS, into its record (spmhd_pair_row.hpp).
 template <int D, class K>
 void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
+  using R = Record<D>;
   const Real* psi = opt_.cleaning != Cleaning::None ? psi_.data() : nullptr;
+  const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
+  records_.resize(R::size * n_);
 #pragma omp parallel for schedule(static)
   for (std::size_t a = 0; a < n_; ++a) {
+    Real* r = records_.data() + R::size * a;
     const Real inv_h = 1.0 / h_[a];
     Real s = inv_h * inv_h;
     for (int k = 0; k < D; ++k) s *= inv_h;
-    inv_h_[a] = inv_h;
-    grad_scale_[a] = s;  // f_over_r(r, h) = f_over_r(r / h, 1) / h^(D+2)
     const Real o = 1.0 / (omega_[a] * rho_[a] * rho_[a]);
     inv_omega_rho2_[a] = o;
     const Real* B = B_.data() + 3 * a;
-    mhd::maxwell_stress_over_omega_rho2<D>(B, P_[a], o, stress_over_omega_rho2_.data() + D * D * a);  // eq. (8)
-    for (int k = 0; k < 3; ++k) b_over_omega_rho2_[3 * a + k] = o * B[k];
+    for (int k = 0; k < D; ++k) {
+      r[R::x + k] = x_[D * a + k];
+      r[R::v + k] = opt_.evolve_particles ? v_[D * a + k] : 0;
+      r[R::bo + k] = o * B[k];
+    }
+    r[R::h] = h_[a], r[R::m] = ms_[a], r[R::inv_h] = inv_h;
+    r[R::grad_scale] = s;  // f_over_r(r, h) = f_over_r(r / h, 1) / h^(D+2)
+    r[R::rho] = rho_[a], r[R::P] = P_[a], r[R::u] = energy ? u_[a] : 0;  // no u with a barotropic EOS
+    r[R::fast_speed] = fast_speed_[a];
     // local_ch: the state is psi / c_h
-    psi_over_omega_rho2_[a] = psi ? o * psi[a] * (opt_.local_ch ? cleaning_speeds_[a] : 1.0) : 0;
+    r[R::psi_o] = psi ? o * psi[a] * (opt_.local_ch ? cleaning_speeds_[a] : 1.0) : 0;
+    r[R::psi] = psi ? psi[a] : 0;
+    for (int k = 0; k < 3; ++k) r[R::B + k] = B[k];
+    mhd::maxwell_stress_over_omega_rho2<D>(B, P_[a], o, r + R::stress);  // eq. (8)
+    for (int k = R::bo + D; k < R::size; ++k) r[k] = 0;
   }
 }
+
+namespace {
+template <int D, class K>
+using PairRow = PairSums<D> (*)(const spmhd_detail::RowInput<D>&, std::size_t, std::uint32_t*);
+template <int D, class K>
+PairRow<D, K> pair_row_in_use() {
+  switch (pair_loop_simd()) {
+    case PairLoopSimd::Avx512: return spmhd_detail::pair_row_avx512<D, K>;
+    case PairLoopSimd::Avx2: return spmhd_detail::pair_row_avx2<D, K>;
+    case PairLoopSimd::Sse2: return spmhd_detail::pair_row<simd::Real2, D, K>;
+    case PairLoopSimd::Scalar: break;
+  }
+  return spmhd_detail::pair_row<Real, D, K>;
+}
+}  // namespace
 
 template <int D, class K>
 void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
@@ -184,39 +139,35 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
   const bool evolve = opt_.evolve_particles, induction = opt_.field == FieldRepresentation::MagneticField;
   const bool cleaning = opt_.cleaning != Cleaning::None;
   const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
-  const PairLoopInput in{x_.data(), evolve ? v_.data() : nullptr, energy ? u_.data() : nullptr,
-                         cleaning ? psi_.data() : nullptr, ms_.data(), h_.data(), inv_h_.data(), grad_scale_.data(),
-                         rho_.data(), omega_.data(), P_.data(), fast_speed_.data(), B_.data(), inv_omega_rho2_.data(),
-                         stress_over_omega_rho2_.data(), b_over_omega_rho2_.data(), psi_over_omega_rho2_.data(),
-                         cleaning_speeds_.data(), cleaning_speed_,
-                         evolve, induction, cleaning, opt_.cleaning == Cleaning::Constrained, opt_.local_ch,
-                         opt_.subtract_monopole_force,
-                         opt_.alpha_visc, opt_.beta_visc, opt_.alpha_u, induction ? opt_.alpha_b : 0.0, opt_.sigma};
+  const NeighbourList& L = ns_.list();
+  const spmhd_detail::RowInput<D> in{records_.data(), L.indices.data(), L.offsets.data(), MinimumImage<D>(ns_.box()),
+                                     K::support, evolve, energy, induction, cleaning,
+                                     opt_.cleaning == Cleaning::Constrained, opt_.alpha_visc, opt_.beta_visc,
+                                     energy ? opt_.alpha_u : 0.0, induction ? opt_.alpha_b : 0.0};
+  const FinishInput fin{cleaning ? psi_.data() : nullptr, omega_.data(), P_.data(), inv_omega_rho2_.data(),
+                        cleaning_speeds_.data(), cleaning_speed_, evolve, induction, cleaning,
+                        opt_.cleaning == Cleaning::Constrained, opt_.local_ch, opt_.subtract_monopole_force, opt_.sigma};
   auto derivative = [&](Field f, bool present) { return present ? ydot + layout_.offset(f) : nullptr; };
   const PairLoopOutput out{perm_.data(),
                            derivative(Field::Position, evolve), derivative(Field::Velocity, evolve),
                            derivative(Field::InternalEnergy, energy), derivative(Field::MagneticField, induction),
                            derivative(Field::EulerAlpha, !induction), derivative(Field::Psi, cleaning),
                            divB_.data(), divv_.data()};
-  const NeighbourList& L = ns_.list();
-  const MinimumImage<D> image(ns_.box());
+  const PairRow<D, K> row = pair_row_in_use<D, K>();
+  const std::size_t room = max_list_ + 8;  // a row plus a padded block
+  row_scratch_.resize(room * static_cast<std::size_t>(omp_get_max_threads()));
   std::size_t pairs = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : pairs)
-  for (std::size_t a = 0; a < n_; ++a) {
-    const ParticleA<D> pa{a, h_[a], inv_h_[a], grad_scale_[a], rho_[a], Eigen::Map<const Vec3>(&B_[3 * a]),
-                          velocity_of<D>(in, a), Eigen::Map<const Vec<D>>(&b_over_omega_rho2_[3 * a]),
-                          Eigen::Map<const Eigen::Matrix<Real, D, D>>(&stress_over_omega_rho2_[D * D * a])};
-    PairSums<D> sums;
-    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
-      const std::size_t b = L.indices[k];
-      const Vec<D> x_ab = image(in.x + D * a, in.x + D * b);
-      const Real r2 = x_ab.squaredNorm();
-      const Real reach = K::support * std::max(pa.h, in.h[b]);
-      if (r2 >= reach * reach || r2 == 0) continue;
-      ++pairs;
-      add_pair<D, K>(sums, pa, in, b, x_ab, r2);
+#pragma omp parallel reduction(+ : pairs)
+  {
+    std::uint32_t* inside = row_scratch_.data() + room * static_cast<std::size_t>(omp_get_thread_num());
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t a = 0; a < n_; ++a) {
+      const PairSums<D> sums = row(in, a, inside);
+      pairs += sums.pairs;
+      const ParticleA<D> pa{a, h_[a], rho_[a], Eigen::Map<const Vec3>(&B_[3 * a]),
+                            evolve ? Vec<D>(Eigen::Map<const Vec<D>>(&v_[D * a])) : Vec<D>(Vec<D>::Zero())};
+      finish_particle(sums, pa, fin, out);
     }
-    finish_particle(sums, pa, in, out);
   }
   interacting_pairs_ = pairs;
   pairs_total_ += static_cast<double>(pairs);

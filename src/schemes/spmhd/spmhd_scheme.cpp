@@ -89,12 +89,7 @@ void SpmhdScheme<D, K>::allocate_per_particle() {
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
   scratch_.assign(layout_.size(), 0);
-  inv_h_.assign(n_, 0);
-  grad_scale_.assign(n_, 0);
   inv_omega_rho2_.assign(n_, 0);
-  stress_over_omega_rho2_.assign(D * D * n_, 0);
-  b_over_omega_rho2_.assign(3 * n_, 0);
-  psi_over_omega_rho2_.assign(n_, 0);
   list_h_.assign(n_, 0);
   list_h_served_.assign(n_, 0);
   list_h_needed_.assign(n_, 0);

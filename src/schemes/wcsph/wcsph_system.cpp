@@ -1,18 +1,16 @@
 #include "sphark/schemes/wcsph/wcsph_system.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <exception>
 #include <sstream>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernel_list.hpp"
-#include "sphark/operators/artificial_viscosity.hpp"
-#include "sphark/operators/conjugate_cleaning.hpp"
-#include "sphark/operators/density_diffusion.hpp"
-#include "sphark/operators/pair_geometry.hpp"
-#include "sphark/operators/pressure_force.hpp"
-#include "sphark/operators/renormalised_gradient.hpp"
 #include "sphark/operators/tait_eos.hpp"
+#include "sphark/simd/dispatch.hpp"
+#include "wcsph_pair_rows.hpp"
 
 namespace sphark {
 
@@ -32,8 +30,6 @@ WcsphSystem<D, Kernel>::WcsphSystem(std::size_t particles, WcsphParams<D> params
   if (!(p_.h > 0) || !(p_.mass > 0) || !(p_.rho0 > 0) || !(p_.sound_speed > 0))
     throw std::invalid_argument("WcsphSystem: h, mass, rho0 and sound_speed must be positive");
   pressure_.assign(particles, 0);
-  p_over_rho2_.assign(particles, 0);
-  q_psi_.assign(particles, 0);
   div_v_.assign(particles, 0);
   grad_rho_.assign(particles, Vec<D>::Zero());
 }
@@ -42,32 +38,51 @@ template <int D, class Kernel>
 void WcsphSystem<D, Kernel>::update_neighbours(const Real* x) {
   const Real support = Kernel::support * p_.h;
   const Real skin = p_.skin_fraction * support;
+  const std::size_t n = layout_.particles();
   ScopedPhase timer(Phase::Neighbours);
-  if (built_ && search_.max_displacement_since_build(x) < 0.5 * skin) return;
-  search_.build(x, layout_.particles(), support + skin);
+  if (built_) {  // the lists hold slots: the displacement check sees the positions in slot order
+    x_slots_.resize(D * n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t s = 0; s < n; ++s)
+      for (int k = 0; k < D; ++k) x_slots_[D * s + k] = x[D * slot_particle_[s] + k];
+    if (search_.max_displacement_since_build(x_slots_.data()) < 0.5 * skin) return;
+  }
+  // Lists of the particles (rows ascending in particle number), then slots in cell order: slot
+  // s is particle slot_particle_[s], and the rows keep their order (sums do not depend on slots).
+  search_.build(x, n, support + skin);
+  slot_particle_ = search_.cell_order();
+  search_.renumber(slot_particle_);
   built_ = true;
   ++builds_;
 }
 
-// <grad rho>^L of Antuono et al. (2010), eq. (12), for the corrected density diffusion.
-template <int D, class Kernel>
-void WcsphSystem<D, Kernel>::renormalised_density_gradients(const Real* x, const Real* rho) {
-  const NeighbourList& nl = search_.list();
-  const Real h = p_.h, support2 = Kernel::support * h * Kernel::support * h;
-  const std::size_t n = layout_.particles();
-  ScopedPhase timer(Phase::DensityH);
-#pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) {
-    RenormalisedGradient<D> g;
-    for (std::size_t k = nl.begin(a); k < nl.end(a); ++k) {
-      const std::size_t b = nl.indices[k];
-      const Vec<D> x_ab = search_.separation(x, a, b);
-      if (x_ab.squaredNorm() >= support2) continue;
-      g.add(p_.mass / rho[b], rho[a], rho[b], x_ab, Kernel::f_over_r(x_ab.norm(), h) * x_ab);
-    }
-    grad_rho_[a] = g.finish();
+namespace {
+using wcsph_detail::ForceRow;
+using wcsph_detail::RowInput;
+
+// The rows of the path in use (wcsph_pair_rows.hpp).
+template <int D, class K>
+struct Rows {
+  std::size_t (*inside)(const RowInput<D>&, std::size_t, std::uint32_t*);
+  Vec<D> (*gradient)(const RowInput<D>&, std::size_t, wcsph_detail::InsideRow);
+  ForceRow<D> (*forces)(const RowInput<D>&, std::size_t, wcsph_detail::InsideRow);
+};
+template <int D, class K>
+Rows<D, K> rows_in_use() {
+  using namespace wcsph_detail;
+  switch (pair_loop_simd()) {
+    case PairLoopSimd::Avx512:
+      return {neighbours_inside_avx512<D>, density_gradient_row_avx512<D, K>, force_row_avx512<D, K>};
+    case PairLoopSimd::Avx2:
+      return {neighbours_inside_avx2<D>, density_gradient_row_avx2<D, K>, force_row_avx2<D, K>};
+    case PairLoopSimd::Sse2:
+      return {neighbours_inside<simd::Real2, D>, density_gradient_row<simd::Real2, D, K>,
+              force_row<simd::Real2, D, K>};
+    case PairLoopSimd::Scalar: break;
   }
+  return {neighbours_inside<Real, D>, density_gradient_row<Real, D, K>, force_row<Real, D, K>};
 }
+}  // namespace
 
 // The state is finite with rho > 0 (the stepper's guard checks it before every call).
 template <int D, class Kernel>
@@ -90,53 +105,66 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   const std::size_t n = layout_.particles();
   const Real m = p_.mass, h = p_.h, c_h = p_.cleaning_speed();
   const Real dh_c = p_.delta * h * p_.sound_speed;
+  const bool viscosity = p_.alpha > 0 && !subsystem;
+  using wcsph_detail::Record;
+  records_.resize(Record<D>::size * n);
+  const bool corrected_diffusion = dh_c > 0 && p_.diffusion_correction && !subsystem;
+  const NeighbourList& nl = search_.list();
+  Real grad_scale = 1 / (h * h);
+  for (int k = 0; k < D; ++k) grad_scale /= h;
+  const RowInput<D> in{records_.data(), nl.indices.data(), nl.offsets.data(), MinimumImage<D>(search_.box()),
+                       m, h, 1 / h, grad_scale, Kernel::support * h * Kernel::support * h, p_.alpha,
+                       clean, subsystem, viscosity, dh_c > 0 && !subsystem, corrected_diffusion};
+  const std::uint32_t* particle = slot_particle_.data();
 #pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) {
-    pressure_[a] = tait_pressure(rho[a], p_.rho0, p_.sound_speed);
-    p_over_rho2_[a] = pressure_[a] / (rho[a] * rho[a]);
-    if (clean) q_psi_[a] = psi[a] / (rho[a] * rho[a]);  // Omega = 1 for constant h
+  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
+    const std::size_t p = particle[a];
+    pressure_[p] = tait_pressure(rho[p], p_.rho0, p_.sound_speed);
+    Real* r = records_.data() + Record<D>::size * a;
+    for (int k = 0; k < D; ++k) {
+      r[Record<D>::x + k] = x(k, p);
+      r[Record<D>::v + k] = v(k, p);
+      r[Record<D>::grad_rho + k] = 0;
+    }
+    r[Record<D>::rho] = rho[p];
+    r[Record<D>::volume] = m / rho[p];
+    r[Record<D>::p_over_rho2] = pressure_[p] / (rho[p] * rho[p]);
+    r[Record<D>::q_psi] = clean ? psi[p] / (rho[p] * rho[p]) : 0;  // Omega = 1 for constant h
+    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho[p], p_.rho0, p_.sound_speed) : 0;
+    for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
   }
 
-  const bool corrected_diffusion = dh_c > 0 && p_.diffusion_correction && !subsystem;
-  if (corrected_diffusion) renormalised_density_gradients(x.data(), rho.data());
-  const Vec<D> zero = Vec<D>::Zero();
-  const NeighbourList& nl = search_.list();
-  const Real support2 = Kernel::support * h * Kernel::support * h;
-  Real max_acc2 = 0;
+  const Rows<D, Kernel> rows = rows_in_use<D, Kernel>();
+  // The pairs inside the support: inside_count_[a] of them from inside_[start(a)] on, a row's
+  // room its list length plus the padding a block may write past it.
+  constexpr std::size_t pad = 8;
+  inside_.resize(nl.pairs() + pad * n);
+  inside_count_.resize(n);
+  auto start = [&](std::size_t a) { return inside_.data() + nl.begin(a) + pad * a; };
+  auto row = [&](std::size_t a) { return wcsph_detail::InsideRow{start(a), inside_count_[a]}; };
   ScopedPhase forces_timer(Phase::Forces);
-#pragma omp parallel for schedule(static) reduction(max : max_acc2)
-  for (std::size_t a = 0; a < n; ++a) {
-    Vec<D> acc = Vec<D>::Zero();
-    Real cont = 0, diffusion = 0, div_sum = 0;
-    const Vec<D> va = v.col(a);
-    for (std::size_t k = nl.begin(a); k < nl.end(a); ++k) {
-      const std::size_t b = nl.indices[k];
-      const Vec<D> x_ab = search_.separation(x.data(), a, b);
-      if (x_ab.squaredNorm() >= support2) continue;
-      const auto g = pair_geometry<Kernel, D>(x_ab, h);
-      const Vec<D> v_ab = va - v.col(b);
-      // seed 000, eq. (36): summand of the difference divergence of v (also the continuity sum)
-      const Real div_term = difference_divergence_term(m, va, Vec<D>(v.col(b)), g.grad_w);
-      div_sum += div_term;
-      if (clean) acc += -symmetric_gradient_term(m, q_psi_[a], g.grad_w, q_psi_[b], g.grad_w);  // eq. (39)
-      if (subsystem) continue;
-      acc += pressure_acceleration_term<D>(m, p_over_rho2_[a], p_over_rho2_[b], g.grad_w);  // eq. (27)
-      if (p_.alpha > 0) {
-        const Real c_ab = 0.5 * (tait_sound_speed(rho[a], p_.rho0, p_.sound_speed) +
-                                 tait_sound_speed(rho[b], p_.rho0, p_.sound_speed));
-        acc += monaghan_viscosity_term<D>(m, p_.alpha, c_ab, 0.5 * (rho[a] + rho[b]), h, x_ab, v_ab, g.grad_w);
-      }
-      cont += continuity_term<D>(m, v_ab, g.grad_w);  // eq. (28), sign of eq. (36)
-      if (dh_c > 0)
-        diffusion += density_diffusion_term<D>(m / rho[b], rho[a], rho[b], corrected_diffusion ? grad_rho_[a] : zero,
-                                               corrected_diffusion ? grad_rho_[b] : zero, x_ab, g.grad_w);
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < n; ++a) inside_count_[a] = rows.inside(in, a, start(a));
+  if (corrected_diffusion) {
+    ScopedPhase timer(Phase::DensityH);
+#pragma omp parallel for schedule(static)
+    for (std::size_t a = 0; a < n; ++a) {
+      grad_rho_[a] = rows.gradient(in, a, row(a));
+      Eigen::Map<Vec<D>>(records_.data() + Record<D>::size * a + Record<D>::grad_rho) = grad_rho_[a];
     }
-    div_v_[a] = -div_sum / rho[a];  // eq. (36)
-    if (!subsystem && p_.body_force) acc += p_.body_force(Vec<D>(x.col(a)));
-    dv.col(a) = acc;
-    dx.col(a) = subsystem ? Vec<D>::Zero() : va;
-    drho[a] = subsystem ? 0.0 : cont + dh_c * diffusion;
-    if (clean) dpsi[a] = -c_h * c_h * rho[a] * div_v_[a] - p_.cleaning_rate() * psi[a];  // eq. (30)
+  }
+  Real max_acc2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : max_acc2)
+  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
+    const ForceRow<D> sums = rows.forces(in, a, row(a));
+    const std::size_t p = particle[a];
+    Vec<D> acc = sums.acc;
+    div_v_[p] = -sums.continuity / rho[p];  // eq. (36)
+    if (!subsystem && p_.body_force) acc += p_.body_force(Vec<D>(x.col(p)));
+    dv.col(p) = acc;
+    dx.col(p) = subsystem ? Vec<D>::Zero() : Vec<D>(v.col(p));
+    drho[p] = subsystem ? 0.0 : sums.continuity + dh_c * sums.diffusion;  // eq. (28) + delta-SPH
+    if (clean) dpsi[p] = -c_h * c_h * rho[p] * div_v_[p] - p_.cleaning_rate() * psi[p];  // eq. (30)
     max_acc2 = std::max(max_acc2, acc.squaredNorm());
   }
   max_accel_ = std::sqrt(max_acc2);

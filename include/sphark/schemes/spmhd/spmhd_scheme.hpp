@@ -180,11 +180,11 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> scratch_;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
   long evaluated_version_ = -1;
-  // Per-particle factors of the pair loop (init, SoA): 1/h, 1/h^(D+2) (the kernel-gradient scale),
-  // 1/(Omega rho^2), and M/(Omega rho^2) (the D x D block of the Maxwell stress, seed 000 eq. (8)),
-  // B/(Omega rho^2), psi/(Omega rho^2) (the psi of (23): times c_h,a with local_ch).
-  std::vector<Real> inv_h_, grad_scale_, inv_omega_rho2_, stress_over_omega_rho2_, b_over_omega_rho2_,
-      psi_over_omega_rho2_;
+  // Per-particle factors of the pair loop (init): one record per particle of what its neighbours
+  // read (src/schemes/spmhd/spmhd_pair_row.hpp: x, h, m, 1/h, 1/h^(D+2), rho, P, u, c_f,
+  // psi/(Omega rho^2), psi, B, v, M/(Omega rho^2) (seed 000 eq. (8)), B/(Omega rho^2)), and 1/(Omega rho^2).
+  std::vector<Real> records_, inv_omega_rho2_;
+  std::vector<std::uint32_t> row_scratch_;  // per thread: a row's interacting neighbours
   std::vector<Real> h_guess_;       // h at the start of the density solve
   // Per-particle Verlet lists: particle i's list radius is support * list_h_[i] * (1 + skin)
   // (a pair is listed if closer than the larger of its two radii); list_h_served_[i], the largest
