@@ -63,8 +63,10 @@ void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, cons
           "the system declares no position block (position_size() == 0)");
   require(o, !(xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np)) || empty_rank, "method", o.method,
           "position/velocity blocks overlap or exceed the state size");
-  const bool bounded = o.fixed_dt > 0 || o.max_dt > 0 || std::isfinite(system.max_stable_dt(t0, y0, nullptr));
-  require(o, bounded, "method", o.method, "needs fixed_dt, max_dt or a finite system max_stable_dt");
+  const Real stable = o.fixed_dt > 0 || o.max_dt > 0 ? 0 : system.max_stable_dt(t0, y0, nullptr);
+  const std::string why = std::isnan(stable) && !system.last_error().empty() ? " (" + system.last_error() + ")" : "";
+  require(o, o.fixed_dt > 0 || o.max_dt > 0 || std::isfinite(stable), "method", o.method,
+          "needs fixed_dt, max_dt or a finite system max_stable_dt" + why);
 }
 
 }  // namespace

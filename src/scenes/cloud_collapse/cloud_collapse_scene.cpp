@@ -26,8 +26,11 @@ void CloudCollapseScene::set_defaults(CoreOptions& core) {
 void CloudCollapseScene::add_options(OptionParser& p) {
   std::vector<std::string> variants = cloud_collapse_variants();
   variants.push_back("both");
-  p.add("--variant", &variant_, "div B control (both: none, then cleaning)", OneOf{variants});
-  p.add("--particles", &particles_, "particles in the sphere requested (the ambient adds ~0.476 x)", Range{100, 1e8});
+  p.add("--variant", &variant_, "div B control (both: cleaning, then none)", OneOf{variants});
+  p.add("--particles", &particles_,
+        "particles in the sphere requested (the ambient adds ~0.476 x; below 1000 the ambient's smoothing "
+        "lengths exceed half the box)",
+        Range{1000, 1e8});
   p.add("--mass", &params_.mass_msun, "sphere mass [M_sun]", Positive{});
   p.add("--radius", &params_.radius_cm, "sphere radius [cm]", Positive{});
   p.add("--sound-speed", &params_.sound_speed_cm_s, "isothermal sound speed of the sphere [cm/s]", Positive{});
@@ -40,7 +43,9 @@ void CloudCollapseScene::add_options(OptionParser& p) {
   p.add("--alpha-b", &params_.alpha_b, "artificial resistivity of cleaning+resistivity", NonNegative{});
   p.add("--sigma", &params_.sigma, "cleaning damping, 1/tau = sigma c_h / h", NonNegative{});
   p.add("--overclean", &params_.overclean, "c_h = overclean x fast speed", Range{1, 100});
-  p.add_flag("--global-ch", &global_ch_, "one global c_h (the largest fast speed) instead of each particle's");
+  p.add_flag("--local-ch", &local_ch_, "each particle's own c_h (its fast speed) instead of one global c_h");
+  p.add("--step-floor", &params_.step_floor_tff, "the run fails (exit 3) when its steps stay below this [t_ff]",
+        Range{1e-12, 1e-2});
   p.add_flag("--no-tensile-correction", &no_tensile_correction_, "leave out the correction (9) of the Maxwell stress");
   p.add("--courant", &params_.courant, "Courant number of dt = C h / v_sig", Range{0.01, 1});
   p.add("--gravity", &gravity_, "gravity solver", OneOf{{"tree", "direct"}});
@@ -52,7 +57,7 @@ void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core,
   limit_to_t_end(p, "--diagnostics-every", diagnostics_every_, core.t_end);  // both in t_ff
   params_.particles = static_cast<std::size_t>(particles_);
   params_.gravity = parse_gravity_solver(gravity_);
-  params_.local_ch = !global_ch_;
+  params_.local_ch = local_ch_;
   params_.tensile_correction = !no_tensile_correction_;
   try {
     free_fall_time_ = cloud_numbers(params_).free_fall_time;
@@ -64,7 +69,7 @@ void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core,
 Real CloudCollapseScene::time_unit() const { return free_fall_time_; }
 
 std::vector<std::string> CloudCollapseScene::run_names() const {
-  if (variant_ == "both") return {"none", "cleaning"};
+  if (variant_ == "both") return {"cleaning", "none"};  // a failing none does not stop cleaning
   return {variant_};
 }
 
@@ -97,6 +102,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   append_key_value(text, "courant", params_.courant);
   append_key_value(text, "gravity", gravity_);
   append_key_value(text, "theta", params_.theta);
+  append_key_value(text, "step_floor", params_.step_floor_tff);
   return text;
 }
 
@@ -118,7 +124,7 @@ std::unique_ptr<SceneRun> CloudCollapseScene::make_probe_run(const std::string& 
   CloudCollapseParams p = params_;
   p.variant = run;
   const Real per_sphere_particle = predicted_particles(run) / static_cast<Real>(std::max<long>(particles_, 1));
-  p.particles = std::max<std::size_t>(100, static_cast<std::size_t>(particles / per_sphere_particle));
+  p.particles = std::max<std::size_t>(1000, static_cast<std::size_t>(particles / per_sphere_particle));
   p.particles = std::min<std::size_t>(p.particles, params_.particles);
   return std::make_unique<CollapseRun>(p, diagnostics_every_ * free_fall_time_);
 }

@@ -86,6 +86,7 @@ void CollapseRun::settings(TimeLoopSettings& s) {
   s.sample_every = every_;
   s.frames_basename = "collapse";
   s.progress_interval = 10;
+  s.step_floor_fraction = p_.step_floor_tff * cloud_.numbers.free_fall_time / s.t_end;
   dir_ = s.frames_dir;
 }
 

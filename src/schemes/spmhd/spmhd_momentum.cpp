@@ -2,11 +2,11 @@
 // tensile-instability correction (seed 000, eq. (9)) injects; see SpmhdScheme::momentum_budget.
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/mhd_operators.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
-#include "sphark/schemes/spmhd/unit_kernel.hpp"
 
 namespace sphark {
 
@@ -29,18 +29,24 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
   if (!opt_.subtract_monopole_force) return m;
   const NeighbourList& L = ns_.list();
   const MinimumImage<D> image(ns_.box());
+  // B / (Omega rho^2) and the force pass's kernel gradient (spmhd_pair_row.hpp): f_over_r(r, h)
+  // = unit_f_over_r(r / h, h / r) / h^(D+2)
+  std::vector<Real> bo(3 * n_);
+  for (std::size_t a = 0; a < n_; ++a)
+    for (int k = 0; k < 3; ++k) bo[3 * a + k] = B_[3 * a + k] / (omega_[a] * rho_[a] * rho_[a]);
+  const auto gradient_factor = [&](std::size_t a, Real r) {
+    return K::unit_f_over_r(r / h_[a], h_[a] / r) / std::pow(h_[a], D + 2);
+  };
   for (std::size_t a = 0; a < n_; ++a) {  // slots, serial: a fixed summation order
     Real S = 0;  // eq. (9)'s symmetric divergence
-    const Eigen::Map<const Vec<D>> oB_a(&b_over_omega_rho2_[3 * a]);
+    const Eigen::Map<const Vec<D>> oB_a(&bo[3 * a]);
     for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
       const std::size_t b = L.indices[k];
       const Vec<D> x_ab = image(x_.data() + D * a, x_.data() + D * b);
       const Real r = x_ab.norm();
       if (r >= K::support * std::max(h_[a], h_[b]) || r == 0) continue;
-      // the force pass's kernel gradients (spmhd_forces.cpp)
-      const Vec<D> g_a = grad_scale_[a] * UnitKernel<K>::f_over_r(r * inv_h_[a], h_[a] / r) * x_ab;
-      const Vec<D> g_b = grad_scale_[b] * UnitKernel<K>::f_over_r(r * inv_h_[b], h_[b] / r) * x_ab;
-      S += mhd::monopole_term(ms_[b], oB_a, g_a, Eigen::Map<const Vec<D>>(&b_over_omega_rho2_[3 * b]), g_b);
+      const Vec<D> g_a = gradient_factor(a, r) * x_ab, g_b = gradient_factor(b, r) * x_ab;
+      S += mhd::monopole_term(ms_[b], oB_a, g_a, Eigen::Map<const Vec<D>>(&bo[3 * b]), g_b);
     }
     m.tensile -= ms_[a] * S * Eigen::Map<const Vec<3>>(&B_[3 * a]).template head<D>();
   }

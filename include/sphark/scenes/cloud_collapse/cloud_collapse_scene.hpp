@@ -1,7 +1,7 @@
 #pragma once
 // The cloud-collapse example (seed 000 §IV-C, Figs. 4-6; issue #16) for the run driver
-// (run/scene.hpp). One run per --variant (none | cleaning | cleaning+resistivity, or "both":
-// none then cleaning); each writes <out>/<variant>/diagnostics.csv (the issue's columns plus the
+// (run/scene.hpp). One run per --variant (none | cleaning | cleaning+resistivity, or "both": cleaning then
+// none); each writes <out>/<variant>/diagnostics.csv (the issue's columns plus the
 // step-size record), the VTK series (gas and sinks), step_levels.csv (the particles' own stable
 // steps on power-of-two levels when the sink forms and at the end), column-density maps along y
 // (the whole cloud and a zoom on the sink) and sinks.csv (creation and accretion); the report
@@ -46,8 +46,8 @@ class CloudCollapseScene final : public Scene {
   CloudCollapseParams params_;
   std::string variant_ = "cleaning";
   std::string gravity_ = "tree";
-  long particles_ = 10000;
-  bool global_ch_ = false, no_tensile_correction_ = false;
+  long particles_ = 2000;
+  bool local_ch_ = false, no_tensile_correction_ = false;
   Real diagnostics_every_ = 0.005;  // t_ff
   Real free_fall_time_ = 0;         // code units, from the parameters
   std::vector<std::pair<std::string, std::string>> summaries_;  // (variant, summary.csv line) of the runs done
