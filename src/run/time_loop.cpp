@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -53,12 +54,13 @@ struct CountBase {
 };
 
 // Advances to t_out: in one call, or (with hooks.after_step) step by step, resizing the state and
-// the stepper when the hook asks for it.
+// the stepper when the hook asks for it; `progress` is called after each step.
 AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_out, std::vector<Real>& y, Real& t,
-                         StateLayout& layout) {
+                         StateLayout& layout, const std::function<void()>& progress) {
   if (!hooks.after_step) return stepper.advance(t_out, y.data(), t);
   for (;;) {
     const AdvanceStatus st = stepper.step(t_out, y.data(), t);
+    progress();
     if (st != AdvanceStatus::Stepped && st != AdvanceStatus::Reached) return st;
     if (std::optional<TimeLoopHooks::Resize> r = hooks.after_step(t, y.data())) {
       if (r->y.size() != r->layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
@@ -187,7 +189,9 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
       break;
     }
     const Real t_out = std::min(t_end, sample * s.sample_every);
-    const AdvanceStatus st = advance_to(*stepper, hooks, t_out, y, t, layout);
+    const AdvanceStatus st = advance_to(*stepper, hooks, t_out, y, t, layout, [&] {
+      if (!s.quiet) progress.update(t, stats().steps, stepper->stats().last_dt);
+    });
     if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
       res.status = TimeLoopStatus::Stopped;
       res.signal = stop_requested();
