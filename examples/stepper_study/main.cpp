@@ -100,87 +100,104 @@ void check_fixed_steps(const OptionParser& p, const StudyScene& scene, const Stu
   }
 }
 
-}  // namespace
+// The study's settings with their defaults before the command line.
+StudySettings default_study_settings() {
+  StudySettings s;
+  s.rtols = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
+  s.fixed_cfls = {0.1, 0.2, 0.4, 0.8};
+  s.leapfrog_cfls = {0.025, 0.05, 0.1, 0.2, 0.4, 0.8};
+  return s;
+}
 
-int main(int argc, char** argv) {
+// The command line: the scene's options, the study's settings and the texts that become its
+// method lists and modes once parsed (settle_method_lists).
+struct StudyOptions {
   std::string scene_name = "drop";
   std::filesystem::path out;
   StudySceneOptions so;
-  StudySettings s;
+  StudySettings s = default_study_settings();
   std::string adaptive = "HEUN_EULER_2_1_2,BOGACKI_SHAMPINE_4_2_3,ZONNEVELD_5_3_4,DORMAND_PRINCE_7_4_5,VERNER_8_5_6,"
                          "FEHLBERG_13_7_8,ark-imex";
   std::string fixed = "BOGACKI_SHAMPINE_4_2_3,DORMAND_PRINCE_7_4_5,ark-imex";
   std::string stability = "all";
   std::string modes = "capped,uncapped";
   std::string what = "all";
-  s.rtols = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
-  s.fixed_cfls = {0.1, 0.2, 0.4, 0.8};
-  s.leapfrog_cfls = {0.025, 0.05, 0.1, 0.2, 0.4, 0.8};
+  std::string leapfrogs = "leapfrog,leapfrog-rev";
   int threads = 1;
   bool render = true;
   Real ref_rtol = s.reference.rtol;
+  bool profile = false;
+};
 
-  OptionParser p("stepper_study", "work-precision charts and stability limits of the time steppers on one scene");
-  p.add("--scene", &scene_name, "scene", OneOf{study_scene_names()});
-  p.add("--out", &out, "output directory (default out/stepper_study/<scene>)", "DIR");
+void add_study_options(OptionParser& p, StudyOptions& o) {
+  StudySceneOptions& so = o.so;
+  StudySettings& s = o.s;
+  p.add("--scene", &o.scene_name, "scene", OneOf{study_scene_names()});
+  p.add("--out", &o.out, "output directory (default out/stepper_study/<scene>)", "DIR");
   p.add("--spacing", &so.spacing, "particle spacing (0: scene default; drop 0.08 = 484 particles, disc 0.08 = 484, orszag_tang 1/16 = 16 x 18)", NonNegative{});
   p.add("--t-end", &so.t_end, "end time (0: scene default; drop 0.025, disc 10, orszag_tang 0.5)", NonNegative{});
   p.add("--outputs", &so.outputs, "comparison times, evenly spaced to t_end (0: scene default: drop 25, disc 20, orszag_tang 10)", Range{0, 10000});
-  p.add("--what", &what, "what to run", OneOf{{"all", "matrix", "stability"}});
-  p.add("--methods", &adaptive, "adaptive methods (ERK tables with an embedding, ark-imex), comma-separated; 'none'");
-  p.add("--modes", &modes, "adaptive modes: capped (dt <= cap-cfl x CFL unit), uncapped, or both", OneOf{{"capped", "uncapped", "capped,uncapped"}});
+  p.add("--what", &o.what, "what to run", OneOf{{"all", "matrix", "stability"}});
+  p.add("--methods", &o.adaptive, "adaptive methods (ERK tables with an embedding, ark-imex), comma-separated; 'none'");
+  p.add("--modes", &o.modes, "adaptive modes: capped (dt <= cap-cfl x CFL unit), uncapped, or both", OneOf{{"capped", "uncapped", "capped,uncapped"}});
   p.add("--rtols", &s.rtols, "relative tolerances of the adaptive runs", Positive{});
   p.add("--cap-cfl", &s.limits.cap_cfl, "CFL number of the step cap of capped adaptive runs", Positive{});
-  p.add("--fixed-methods", &fixed, "methods run at every --fixed-cfls (ERK tables, ark-imex; 'none')");
+  p.add("--fixed-methods", &o.fixed, "methods run at every --fixed-cfls (ERK tables, ark-imex; 'none')");
   p.add("--fixed-cfls", &s.fixed_cfls, "CFL numbers of the fixed-step runs", Positive{});
   p.add("--leapfrog-cfls", &s.leapfrog_cfls, "CFL numbers of the leapfrog runs", Positive{});
-  std::string leapfrogs = "leapfrog,leapfrog-rev";
-  p.add("--leapfrog-methods", &leapfrogs, "leapfrog variants run at every --leapfrog-cfls (leapfrog, leapfrog-rev; 'none')");
-  p.add("--reference-rtol", &ref_rtol, "rtol of the reference run (VERNER_8_5_6) and its check (FEHLBERG_13_7_8)", Positive{});
+  p.add("--leapfrog-methods", &o.leapfrogs, "leapfrog variants run at every --leapfrog-cfls (leapfrog, leapfrog-rev; 'none')");
+  p.add("--reference-rtol", &o.ref_rtol, "rtol of the reference run (VERNER_8_5_6) and its check (FEHLBERG_13_7_8)", Positive{});
   p.add("--max-rhs", &s.limits.max_rhs_evals, "stop a run after this many RHS evaluations", Positive{});
-  p.add("--stability-methods", &stability, "methods of the stability bisection ('all': every ERK table, ark-imex, leapfrog)");
+  p.add("--stability-methods", &o.stability, "methods of the stability bisection ('all': every ERK table, ark-imex, leapfrog)");
   p.add("--stability-horizon", &s.stability.horizon, "horizon of a stability trial (0: t_end)", NonNegative{});
   p.add("--energy-tolerance", &s.stability.energy_tolerance, "blow-up criterion: |E - E0| > tol |E0|", Positive{});
   p.add("--bisections", &s.stability.iterations, "bisection steps after bracketing", NonNegative{});
-  p.add("--threads", &threads, "OpenMP threads (1: CPU time = work of one core)", Positive{});
-  p.add_flag("--no-render", &render, "do not draw the charts", false);
+  p.add("--threads", &o.threads, "OpenMP threads (1: CPU time = work of one core)", Positive{});
+  p.add_flag("--no-render", &o.render, "do not draw the charts", false);
   p.add_flag("--resume", &s.resume, "keep the rows of existing work_precision.csv / stability.csv and skip their cases");
   p.add("--raise-sigint-after", &s.raise_sigint_after,
         "testing aid: the study sends itself SIGINT after this many matrix cases (0 = never)", NonNegative{});
-  bool profile = false;
-  p.add_flag("--profile", &profile, "print the wall-time split (neighbours, density/h, forces, stepper, output)");
-  p.parse_or_exit(argc, argv);
+  p.add_flag("--profile", &o.profile, "print the wall-time split (neighbours, density/h, forces, stepper, output)");
+}
 
-  s.adaptive_methods = adaptive == "none" ? std::vector<std::string>{} : method_list(p, "--methods", adaptive, true, false);
-  s.leapfrog_methods = leapfrogs == "none" ? std::vector<std::string>{} : split(leapfrogs);
+// The parsed texts as the settings' method lists, modes and output directory.
+void settle_method_lists(const OptionParser& p, StudyOptions& o) {
+  StudySettings& s = o.s;
+  s.adaptive_methods = o.adaptive == "none" ? std::vector<std::string>{} : method_list(p, "--methods", o.adaptive, true, false);
+  s.leapfrog_methods = o.leapfrogs == "none" ? std::vector<std::string>{} : split(o.leapfrogs);
   for (const std::string& m : s.leapfrog_methods)
     if (m != "leapfrog" && m != "leapfrog-rev") p.fail("--leapfrog-methods", "unknown leapfrog variant '" + m + "'");
-  s.fixed_methods = fixed == "none" ? std::vector<std::string>{} : method_list(p, "--fixed-methods", fixed, false, false);
-  if (stability == "all") {
+  s.fixed_methods = o.fixed == "none" ? std::vector<std::string>{} : method_list(p, "--fixed-methods", o.fixed, false, false);
+  if (o.stability == "all") {
     s.stability_methods = erk_table_names();
     s.stability_methods.push_back("ark-imex");
     s.stability_methods.push_back("leapfrog");
     s.stability_methods.push_back("leapfrog-rev");
   } else {
-    s.stability_methods = method_list(p, "--stability-methods", stability, false, true);
+    s.stability_methods = method_list(p, "--stability-methods", o.stability, false, true);
   }
-  for (const std::string& m : split(modes)) s.adaptive_modes.push_back(m == "capped" ? StudyMode::Capped : StudyMode::Uncapped);
-  s.reference.rtol = s.reference_check.rtol = ref_rtol;
-  s.matrix = what != "stability";
-  s.stability_run = what != "matrix";
-  if (out.empty()) out = std::filesystem::path("out/stepper_study") / scene_name;
-  s.out = out;
+  for (const std::string& m : split(o.modes)) s.adaptive_modes.push_back(m == "capped" ? StudyMode::Capped : StudyMode::Uncapped);
+  s.reference.rtol = s.reference_check.rtol = o.ref_rtol;
+  s.matrix = o.what != "stability";
+  s.stability_run = o.what != "matrix";
+  if (o.out.empty()) o.out = std::filesystem::path("out/stepper_study") / o.scene_name;
+  s.out = o.out;
+}
 
-  threads = apply_thread_count(threads, p.program());
+// Builds the scene (refused if too large), runs the matrix and the stability limits, draws the
+// charts; the exit code.
+int run_study(const OptionParser& p, StudyOptions& o) {
+  const StudySettings& s = o.s;
+  o.threads = apply_thread_count(o.threads, p.program());
   std::unique_ptr<StudyScene> scene;
   try {
-    check_study_size(p, scene_name, so, s);
-    scene = make_study_scene(scene_name, so);
+    check_study_size(p, o.scene_name, o.so, s);
+    scene = make_study_scene(o.scene_name, o.so);
   } catch (const std::exception& e) {
     exit_usage_error(p.program(), "--scene", e.what());
   }
   check_fixed_steps(p, *scene, s);
-  run_profile().enable(profile);
+  run_profile().enable(o.profile);
   prepare_output_dir(s.out, p.program());
   install_stop_handlers();  // SIGINT/SIGTERM: stop the current case (no row), keep the rows so far
   const auto start = std::chrono::steady_clock::now();
@@ -193,12 +210,23 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "stepper_study: %s\n", e.what());
     return 1;
   }
-  if (profile) run_profile().print(std::cout, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  if (o.profile) run_profile().print(std::cout, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   if (const int sig = stop_requested()) {
     std::fprintf(stderr, "stepper_study: stopped by signal %d; %s has the rows done so far (continue with --resume)\n", sig,
                  (s.out / "work_precision.csv").c_str());
     return 128 + sig;
   }
-  if (render && !run_python("work_precision.py", {"--dir", s.out.string()}, false)) return 1;
+  if (o.render && !run_python("work_precision.py", {"--dir", s.out.string()}, false)) return 1;
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  StudyOptions o;
+  OptionParser p("stepper_study", "work-precision charts and stability limits of the time steppers on one scene");
+  add_study_options(p, o);
+  p.parse_or_exit(argc, argv);
+  settle_method_lists(p, o);
+  return run_study(p, o);
 }

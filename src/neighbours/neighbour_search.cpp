@@ -77,8 +77,7 @@ void NeighbourSearch<D>::bin(std::size_t n, Real radius) {
 }
 
 template <int D>
-void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key,
-                               const Real* radii) {
+void NeighbourSearch<D>::check_build(std::size_t n, Real radius) const {
   if (!(radius > 0)) throw std::invalid_argument("NeighbourSearch::build: radius must be positive");
   if (n >= (std::size_t{1} << 31)) throw std::invalid_argument("NeighbourSearch::build: too many particles");
   if (box_) {
@@ -89,9 +88,88 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
                                     std::to_string(k) + " is shorter than twice the search radius " +
                                     std::to_string(radius));
   }
-  std::size_t capacity_before = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
-                                cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
-  for (const auto& t : thread_lists_) capacity_before += t.capacity();
+}
+
+template <int D>
+std::size_t NeighbourSearch<D>::capacity() const {
+  std::size_t c = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
+                  cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
+  for (const auto& t : thread_lists_) c += t.capacity();
+  return c;
+}
+
+// Appends particle i's neighbours to `out`: those within r2max (or, with r2i, the larger of the
+// two particles' squared radii), ascending in key (or in index).
+template <int D>
+void NeighbourSearch<D>::append_row(std::size_t i, const MinimumImage<D>& image, Real r2max, const Real* r2i,
+                                    const std::uint32_t* key, std::vector<std::uint32_t>& out) const {
+  const std::size_t row_start = out.size();
+  // the distinct cells next to i's cell along each axis (wrapped when periodic)
+  std::array<std::array<std::size_t, 3>, D> near{};
+  std::array<int, D> count{};
+  std::size_t ci = cell_of_[i];
+  for (int k = 0; k < D; ++k) {
+    const std::size_t c = ci % cells_[k], nc = cells_[k];
+    ci /= cells_[k];
+    const bool periodic = box_ && box_->periodic[k];
+    int m = 0;
+    if (periodic && nc <= 3) {
+      for (std::size_t j = 0; j < nc; ++j) near[k][m++] = j;
+    } else {
+      if (c > 0) near[k][m++] = c - 1; else if (periodic) near[k][m++] = nc - 1;
+      near[k][m++] = c;
+      if (c + 1 < nc) near[k][m++] = c + 1; else if (periodic) near[k][m++] = 0;
+    }
+    count[k] = m;
+  }
+  std::array<int, D> idx{};
+  while (true) {
+    std::size_t cell = 0;
+    for (int k = D - 1; k >= 0; --k) cell = cell * cells_[k] + near[k][idx[k]];
+    // branch-free append: write every candidate, advance only for the hits
+    const std::uint32_t s0 = cell_start_[cell], s1 = cell_start_[cell + 1];
+    std::size_t pos = out.size();
+    out.resize(pos + (s1 - s0));
+    for (std::uint32_t s = s0; s < s1; ++s) {
+      const std::uint32_t j = cell_particles_[s];
+      const Real d2 = image(points_.data() + D * i, points_.data() + D * j).squaredNorm();
+      const Real reach2 = r2i ? std::max(r2i[i], r2i[j]) : r2max;
+      out[pos] = j;
+      pos += (d2 < reach2) & (j != i);
+    }
+    out.resize(pos);
+    int k = 0;
+    for (; k < D; ++k) {
+      if (++idx[k] < count[k]) break;
+      idx[k] = 0;
+    }
+    if (k == D) break;
+  }
+  // ascending: a deterministic summation order
+  if (key)
+    std::sort(out.begin() + row_start, out.end(), [key](std::uint32_t p, std::uint32_t q) { return key[p] < key[q]; });
+  else
+    std::sort(out.begin() + row_start, out.end());
+}
+
+// The offsets from the row lengths, then each thread's rows copied to their place in the list.
+template <int D>
+void NeighbourSearch<D>::join_rows(const std::vector<std::uint32_t>* rows, int team) {
+  const std::size_t n = n_;
+  for (std::size_t i = 0; i < n; ++i) list_.offsets[i + 1] += list_.offsets[i];
+  const std::size_t pairs = list_.offsets[n];
+  if (pairs > list_.indices.capacity()) list_.indices.reserve(pairs + pairs / 8);  // headroom for later builds
+  list_.indices.resize(pairs);
+#pragma omp parallel for schedule(static, 1)
+  for (int t = 0; t < team; ++t)
+    std::copy(rows[t].begin(), rows[t].end(), list_.indices.begin() + list_.offsets[n * t / team]);
+}
+
+template <int D>
+void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key,
+                               const Real* radii) {
+  check_build(n, radius);
+  const std::size_t capacity_before = capacity();
 
   radius_ = radius;
   n_ = n;
@@ -126,67 +204,12 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
     out.clear();
     for (std::size_t i = first; i < last; ++i) {
       const std::size_t row_start = out.size();
-      // the distinct cells next to i's cell along each axis (wrapped when periodic)
-      std::array<std::array<std::size_t, 3>, D> near{};
-      std::array<int, D> count{};
-      std::size_t ci = cell_of_[i];
-      for (int k = 0; k < D; ++k) {
-        const std::size_t c = ci % cells_[k], nc = cells_[k];
-        ci /= cells_[k];
-        const bool periodic = box_ && box_->periodic[k];
-        int m = 0;
-        if (periodic && nc <= 3) {
-          for (std::size_t j = 0; j < nc; ++j) near[k][m++] = j;
-        } else {
-          if (c > 0) near[k][m++] = c - 1; else if (periodic) near[k][m++] = nc - 1;
-          near[k][m++] = c;
-          if (c + 1 < nc) near[k][m++] = c + 1; else if (periodic) near[k][m++] = 0;
-        }
-        count[k] = m;
-      }
-      std::array<int, D> idx{};
-      while (true) {
-        std::size_t cell = 0;
-        for (int k = D - 1; k >= 0; --k) cell = cell * cells_[k] + near[k][idx[k]];
-        // branch-free append: write every candidate, advance only for the hits
-        const std::uint32_t s0 = cell_start_[cell], s1 = cell_start_[cell + 1];
-        std::size_t pos = out.size();
-        out.resize(pos + (s1 - s0));
-        for (std::uint32_t s = s0; s < s1; ++s) {
-          const std::uint32_t j = cell_particles_[s];
-          const Real d2 = image(points_.data() + D * i, points_.data() + D * j).squaredNorm();
-          const Real reach2 = r2i ? std::max(r2i[i], r2i[j]) : r2max;
-          out[pos] = j;
-          pos += (d2 < reach2) & (j != i);
-        }
-        out.resize(pos);
-        int k = 0;
-        for (; k < D; ++k) {
-          if (++idx[k] < count[k]) break;
-          idx[k] = 0;
-        }
-        if (k == D) break;
-      }
-      // ascending: a deterministic summation order
-      if (key)
-        std::sort(out.begin() + row_start, out.end(), [key](std::uint32_t p, std::uint32_t q) { return key[p] < key[q]; });
-      else
-        std::sort(out.begin() + row_start, out.end());
+      append_row(i, image, r2max, r2i, key, out);
       list_.offsets[i + 1] = out.size() - row_start;
     }
   }
-  for (std::size_t i = 0; i < n; ++i) list_.offsets[i + 1] += list_.offsets[i];
-  const std::size_t pairs = list_.offsets[n];
-  if (pairs > list_.indices.capacity()) list_.indices.reserve(pairs + pairs / 8);  // headroom for later builds
-  list_.indices.resize(pairs);
-#pragma omp parallel for schedule(static, 1)
-  for (int t = 0; t < team; ++t)
-    std::copy(rows[t].begin(), rows[t].end(), list_.indices.begin() + list_.offsets[n * t / team]);
-
-  std::size_t capacity_after = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
-                               cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
-  for (const auto& t : thread_lists_) capacity_after += t.capacity();
-  if (capacity_after != capacity_before) ++allocations_;
+  join_rows(rows, team);
+  if (capacity() != capacity_before) ++allocations_;
 }
 
 template <int D>

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -54,16 +55,14 @@ struct CountBase {
 };
 
 // Advances to t_out: in one call, or (with hooks.after_step) step by step, resizing the state and
-// the stepper when the hook asks for it.
-// With an after_step hook the steps are taken one by one, and `progress` is called after each
-// (a sampling interval can hold many thousands of steps in a collapse).
+// the stepper when the hook asks for it; `progress` is called after each step.
 AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_out, std::vector<Real>& y, Real& t,
                          StateLayout& layout, const std::function<void()>& progress) {
   if (!hooks.after_step) return stepper.advance(t_out, y.data(), t);
   for (;;) {
     const AdvanceStatus st = stepper.step(t_out, y.data(), t);
-    if (st != AdvanceStatus::Stepped && st != AdvanceStatus::Reached) return st;
     progress();
+    if (st != AdvanceStatus::Stepped && st != AdvanceStatus::Reached) return st;
     if (std::optional<TimeLoopHooks::Resize> r = hooks.after_step(t, y.data())) {
       if (r->y.size() != r->layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
       layout = std::move(r->layout);
@@ -74,178 +73,254 @@ AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_ou
   }
 }
 
+// The first index k of the grid k x every after t (a checkpoint time t on the grid gives the next).
+Real grid_index_after(Real t, Real every) { return std::floor(t / every * (1 + 1e-12)) + 1; }
+
+// One run of the loop: its outputs (diagnostics CSV, VTK series, checkpoints), the state, the
+// stepper, the grid position and the counts before a restart.
+class TimeLoop {
+ public:
+  TimeLoop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
+           const TimeLoopSettings& s, const TimeLoopHooks& hooks);
+  TimeLoop(const TimeLoop&) = delete;  // binds_ points into this object
+  TimeLoop& operator=(const TimeLoop&) = delete;
+
+  // Integrates to t_end, a stop, a failure or an early end; the result without its wall time.
+  TimeLoopResult run();
+
+ private:
+  void bind_checkpoint_scalars();
+  void restore(const Checkpoint& c);
+  void bound_steps(OdeSystem& system);
+  StepperStats stats() const { return base_.total(stepper_->stats()); }
+  void save(Real time);
+  void write_frame(Real time) { res_.last_frame = vtk_->write(hooks_.frame(time, y_.data()), time); }
+  void record(Real time);
+  void stop(int signal);
+  void fail();
+  void end_at_root();
+  void checkpoint_if_due();
+  void finish();
+
+  const TimeLoopSettings& s_;
+  const TimeLoopHooks& hooks_;
+  StepperOptions opts_;
+  TimeLoopResult res_;
+  const Real t_end_;
+  const Real frame_every_;
+  AtomicCsv csv_;
+  std::optional<ResumableVtkSeries> vtk_;
+  Real sample_ = 0, next_frame_ = 0, next_checkpoint_;
+  CountBase base_;
+  std::vector<std::pair<std::string, Real*>> binds_;  // the checkpoint's scalars
+  std::vector<Real> y_;
+  StateLayout layout_;  // changes when after_step resizes the state
+  Real t_ = 0;
+  std::unique_ptr<Stepper> stepper_;
+};
+
+TimeLoop::TimeLoop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
+                   const TimeLoopSettings& s, const TimeLoopHooks& hooks)
+    : s_(s), hooks_(hooks), opts_(std::move(opts)), t_end_(snap_to_grid(s.t_end, s.sample_every)),
+      frame_every_(s.frame_every > 0 ? s.frame_every : t_end_), csv_(s.diagnostics_csv, s.columns),
+      next_checkpoint_(s.checkpoint_every), y_(std::move(y0)), layout_(initial_layout) {
+  res_.program = s.program;
+  res_.run = s.run;
+  if (!s.frames_dir.empty()) vtk_.emplace(s.frames_dir, s.frames_basename);
+  bind_checkpoint_scalars();
+  if (y_.size() != layout_.size()) throw std::invalid_argument("run_time_loop: initial state does not fit the layout");
+  if (s.restart) restore(*s.restart);
+  bound_steps(system);
+  stepper_ = make_stepper(system, opts_, t_, y_.data());
+}
+
+void TimeLoop::bind_checkpoint_scalars() {
+  binds_ = {{"sample", &sample_}, {"next_frame", &next_frame_}, {"next_checkpoint", &next_checkpoint_}};
+  for (auto& [name, ptr] : base_.bind()) binds_.emplace_back(name, ptr);
+  binds_.insert(binds_.end(), hooks_.state.begin(), hooks_.state.end());
+}
+
+void TimeLoop::restore(const Checkpoint& c) {
+  if (hooks_.restart_layout) layout_ = hooks_.restart_layout(c);
+  if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
+  y_ = c.y;
+  t_ = c.t;
+  for (auto& [name, ptr] : binds_) *ptr = c.scalar(name);
+  // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
+  // new grid from the checkpoint time on.
+  if (c.scalar("sample_every") != s_.sample_every || !(sample_ * s_.sample_every > t_))  // (the latter: a corrupt index)
+    sample_ = grid_index_after(t_, s_.sample_every);
+  if (c.scalar("frame_every") != frame_every_) next_frame_ = grid_index_after(t_, frame_every_) * frame_every_;
+  if (c.scalar("checkpoint_every") != s_.checkpoint_every && s_.checkpoint_every > 0)
+    next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
+  csv_.restore(c.text("diagnostics.csv"));
+  if (vtk_) vtk_->restore(c.text("frames"));
+  opts_.initial_dt = c.last_dt;
+  opts_.resume_data = c.stepper_data;
+}
+
+// The stepper's limits (unless set by the caller) and the interrupt that polls for a stop signal.
+void TimeLoop::bound_steps(OdeSystem& system) {
+  // A blow-up ends the run instead of shrinking steps forever.
+  if (opts_.min_dt <= 0) {
+    const Real stable = system.max_stable_dt(t_, y_.data(), nullptr);
+    const Real scale = std::isfinite(stable) && stable > 0 ? std::min(stable, s_.sample_every) : s_.sample_every;
+    opts_.min_dt = s_.min_dt_fraction * scale;
+  }
+  if (opts_.step_floor <= 0) opts_.step_floor = s_.step_floor_fraction * t_end_;
+  if (!opts_.interrupt) opts_.interrupt = [] { return stop_requested() != 0; };
+  if (s_.inject_nan_at > 0) opts_.inject_nan_from = s_.inject_nan_at;
+}
+
+void TimeLoop::save(Real time) {
+  ScopedPhase phase(Phase::Output);
+  Checkpoint c;
+  c.program = s_.program;
+  c.argv = s_.argv;
+  c.species = describe_layout(layout_);
+  c.t = time;
+  c.last_dt = stepper_->stats().last_dt > 0 ? stepper_->stats().last_dt : opts_.initial_dt;
+  CountBase now;  // the counts so far: the restart's base
+  now.set(stats());
+  for (auto& [name, ptr] : binds_) {
+    bool counted = false;
+    for (auto& [cname, cptr] : now.bind())
+      if (name == cname) c.set_scalar(name, *cptr), counted = true;
+    if (!counted) c.set_scalar(name, *ptr);
+  }
+  c.set_scalar("sample_every", s_.sample_every);
+  c.set_scalar("frame_every", frame_every_);
+  c.set_scalar("checkpoint_every", s_.checkpoint_every);
+  c.set_text("run", s_.run);
+  for (const auto& [k, v] : s_.texts) c.set_text(k, v);
+  c.set_text("diagnostics.csv", csv_.text());
+  if (vtk_) c.set_text("frames", vtk_->text());
+  c.y = y_;
+  c.stepper_data = stepper_->resume_data();
+  csv_.flush();
+  res_.checkpoint = s_.checkpoint;
+  save_checkpoint(s_.checkpoint, c);
+}
+
+// The diagnostics row at a grid time, and the frame when one is due.
+void TimeLoop::record(Real time) {
+  ScopedPhase phase(Phase::Output);
+  csv_.row(hooks_.diagnostics(time, y_.data(), stats()));
+  if (vtk_ && time >= next_frame_ - 1e-12 * t_end_) {
+    write_frame(time);
+    csv_.flush();
+    next_frame_ += frame_every_;
+  }
+  sample_ += 1;
+}
+
+void TimeLoop::stop(int signal) {
+  res_.status = TimeLoopStatus::Stopped;
+  res_.signal = signal;
+  save(t_);
+}
+
+// y, t: the last good state, written as a row, a frame and a checkpoint.
+void TimeLoop::fail() {
+  res_.status = TimeLoopStatus::Failed;
+  res_.failure = stepper_->failure_reason();
+  {
+    ScopedPhase phase(Phase::Output);
+    csv_.row(hooks_.diagnostics(t_, y_.data(), stats()));
+    if (vtk_) write_frame(t_);
+  }
+  save(t_);
+}
+
+void TimeLoop::end_at_root() {
+  const std::filesystem::path before = res_.last_frame;
+  record(t_);  // the event ends the run at its root time, with a frame of that state
+  if (vtk_ && res_.last_frame == before) {
+    ScopedPhase phase(Phase::Output);
+    write_frame(t_);
+    csv_.flush();
+  }
+  res_.status = TimeLoopStatus::EndedEarly;
+}
+
+// A checkpoint at the first sample at or after every multiple of checkpoint_every.
+void TimeLoop::checkpoint_if_due() {
+  if (!(s_.checkpoint_every > 0 && t_ >= next_checkpoint_ - 1e-12 * t_end_)) return;
+  if ((t_ - next_checkpoint_) / s_.checkpoint_every < 1e3) {
+    while (next_checkpoint_ <= t_ + 1e-12 * t_end_) next_checkpoint_ += s_.checkpoint_every;
+  } else {  // an interval far below the sampling: one jump, not a loop per interval passed
+    next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
+  }
+  save(t_);
+}
+
+TimeLoopResult TimeLoop::run() {
+  if (hooks_.started) hooks_.started();
+  ProgressReporter progress(t_, t_end_, s_.progress_interval);
+  const auto report_progress = [&] {
+    if (!s_.quiet) progress.update(t_, stats().steps, stepper_->stats().last_dt);
+  };
+  if (!s_.restart) record(0.0);
+  if (hooks_.finished && hooks_.finished(t_)) res_.status = TimeLoopStatus::EndedEarly;
+  while (res_.status == TimeLoopStatus::Reached && t_ < t_end_ * (1 - 1e-12)) {
+    if (const int sig = stop_requested()) {  // SIGINT/SIGTERM: checkpoint the last recorded state
+      stop(sig);
+      break;
+    }
+    const Real t_out = std::min(t_end_, sample_ * s_.sample_every);
+    const AdvanceStatus st = advance_to(*stepper_, hooks_, t_out, y_, t_, layout_, report_progress);
+    if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
+      stop(stop_requested());
+      break;
+    }
+    if (st == AdvanceStatus::Failed) {
+      fail();
+      break;
+    }
+    if (st == AdvanceStatus::RootFound) {
+      if (!hooks_.root || !hooks_.root(t_, stepper_->roots_found())) continue;
+      end_at_root();
+      break;
+    }
+    record(t_);
+    if (hooks_.finished && hooks_.finished(t_)) res_.status = TimeLoopStatus::EndedEarly;
+    checkpoint_if_due();
+    report_progress();
+  }
+  if (!s_.quiet) progress.finish();
+  finish();
+  return std::move(res_);
+}
+
+// After the loop: the CSV (and, with checkpoints, one at the end) of a run that ended well, and
+// the result's totals.
+void TimeLoop::finish() {
+  if (res_.ok()) {
+    {
+      ScopedPhase phase(Phase::Output);
+      csv_.flush();
+    }
+    if (s_.checkpoint_every > 0) save(t_);
+  }
+  res_.t_reached = t_;
+  res_.stats = stats();
+  res_.diagnostics = csv_.text();
+}
+
 }  // namespace
 
 TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
                              const TimeLoopSettings& s, const TimeLoopHooks& hooks) {
   if (!(s.sample_every > 0)) throw std::invalid_argument("run_time_loop: sample_every must be positive");
   if (!hooks.diagnostics) throw std::invalid_argument("run_time_loop: no diagnostics hook");
-  const bool frames = !s.frames_dir.empty();
-  if (frames && !hooks.frame) throw std::invalid_argument("run_time_loop: frames without a frame hook");
+  if (!s.frames_dir.empty() && !hooks.frame) throw std::invalid_argument("run_time_loop: frames without a frame hook");
   RunProfile& profile = run_profile();
   if (profile.enabled()) profile.reset();
   const auto start = std::chrono::steady_clock::now();
   install_stop_handlers();
 
-  TimeLoopResult res;
-  res.program = s.program;
-  res.run = s.run;
-  const Real t_end = snap_to_grid(s.t_end, s.sample_every);
-  const Real frame_every = s.frame_every > 0 ? s.frame_every : t_end;
-
-  AtomicCsv csv(s.diagnostics_csv, s.columns);
-  std::optional<ResumableVtkSeries> vtk;
-  if (frames) vtk.emplace(s.frames_dir, s.frames_basename);
-  Real sample = 0, next_frame = 0, next_checkpoint = s.checkpoint_every;
-  CountBase base;
-  std::vector<std::pair<std::string, Real*>> binds = {
-      {"sample", &sample}, {"next_frame", &next_frame}, {"next_checkpoint", &next_checkpoint}};
-  for (auto& [name, ptr] : base.bind()) binds.emplace_back(name, ptr);
-  binds.insert(binds.end(), hooks.state.begin(), hooks.state.end());
-
-  std::vector<Real> y = std::move(y0);
-  StateLayout layout = initial_layout;  // changes when after_step resizes the state
-  if (y.size() != layout.size()) throw std::invalid_argument("run_time_loop: initial state does not fit the layout");
-  Real t = 0;
-  if (s.restart) {
-    const Checkpoint& c = *s.restart;
-    if (hooks.restart_layout) layout = hooks.restart_layout(c);
-    if (auto why = layout_mismatch(c, layout)) throw std::runtime_error("--restart: " + *why);
-    y = c.y;
-    t = c.t;
-    for (auto& [name, ptr] : binds) *ptr = c.scalar(name);
-    // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
-    // new grid from the checkpoint time on.
-    if (c.scalar("sample_every") != s.sample_every || !(sample * s.sample_every > t))  // (the latter: a corrupt index)
-      sample = std::floor(t / s.sample_every * (1 + 1e-12)) + 1;
-    if (c.scalar("frame_every") != frame_every) next_frame = (std::floor(t / frame_every * (1 + 1e-12)) + 1) * frame_every;
-    if (c.scalar("checkpoint_every") != s.checkpoint_every && s.checkpoint_every > 0)
-      next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
-    csv.restore(c.text("diagnostics.csv"));
-    if (vtk) vtk->restore(c.text("frames"));
-    opts.initial_dt = c.last_dt;
-    opts.resume_data = c.stepper_data;
-  }
-  // A blow-up ends the run instead of shrinking steps forever.
-  if (opts.min_dt <= 0) {
-    const Real stable = system.max_stable_dt(t, y.data(), nullptr);
-    const Real scale = std::isfinite(stable) && stable > 0 ? std::min(stable, s.sample_every) : s.sample_every;
-    opts.min_dt = s.min_dt_fraction * scale;
-  }
-  if (opts.step_floor <= 0) opts.step_floor = s.step_floor_fraction * t_end;
-  if (!opts.interrupt) opts.interrupt = [] { return stop_requested() != 0; };
-  if (s.inject_nan_at > 0) opts.inject_nan_from = s.inject_nan_at;
-  auto stepper = make_stepper(system, opts, t, y.data());
-  if (hooks.started) hooks.started();
-  const auto stats = [&] { return base.total(stepper->stats()); };
-
-  const auto save = [&](Real time) {
-    ScopedPhase phase(Phase::Output);
-    Checkpoint c;
-    c.program = s.program;
-    c.argv = s.argv;
-    c.species = describe_layout(layout);
-    c.t = time;
-    c.last_dt = stepper->stats().last_dt > 0 ? stepper->stats().last_dt : opts.initial_dt;
-    CountBase now;  // the counts so far: the restart's base
-    now.set(stats());
-    for (auto& [name, ptr] : binds) {
-      bool counted = false;
-      for (auto& [cname, cptr] : now.bind())
-        if (name == cname) c.set_scalar(name, *cptr), counted = true;
-      if (!counted) c.set_scalar(name, *ptr);
-    }
-    c.set_scalar("sample_every", s.sample_every);
-    c.set_scalar("frame_every", frame_every);
-    c.set_scalar("checkpoint_every", s.checkpoint_every);
-    c.set_text("run", s.run);
-    for (const auto& [k, v] : s.texts) c.set_text(k, v);
-    c.set_text("diagnostics.csv", csv.text());
-    if (vtk) c.set_text("frames", vtk->text());
-    c.y = y;
-    c.stepper_data = stepper->resume_data();
-    csv.flush();
-    res.checkpoint = s.checkpoint;
-    save_checkpoint(s.checkpoint, c);
-  };
-  const auto write_frame = [&](Real time) { res.last_frame = vtk->write(hooks.frame(time, y.data()), time); };
-  const auto record = [&](Real time) {
-    ScopedPhase phase(Phase::Output);
-    csv.row(hooks.diagnostics(time, y.data(), stats()));
-    if (vtk && time >= next_frame - 1e-12 * t_end) {
-      write_frame(time);
-      csv.flush();
-      next_frame += frame_every;
-    }
-    sample += 1;
-  };
-
-  ProgressReporter progress(t, t_end, s.progress_interval);
-  if (!s.restart) record(0.0);
-  if (hooks.finished && hooks.finished(t)) res.status = TimeLoopStatus::EndedEarly;
-  while (res.status == TimeLoopStatus::Reached && t < t_end * (1 - 1e-12)) {
-    if (const int sig = stop_requested()) {  // SIGINT/SIGTERM: checkpoint the last recorded state
-      res.status = TimeLoopStatus::Stopped;
-      res.signal = sig;
-      save(t);
-      break;
-    }
-    const Real t_out = std::min(t_end, sample * s.sample_every);
-    const AdvanceStatus st = advance_to(*stepper, hooks, t_out, y, t, layout, [&] {
-      if (!s.quiet) progress.update(t, stats().steps, stepper->stats().last_dt);
-    });
-    if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
-      res.status = TimeLoopStatus::Stopped;
-      res.signal = stop_requested();
-      save(t);
-      break;
-    }
-    if (st == AdvanceStatus::Failed) {  // y, t: the last good state
-      res.status = TimeLoopStatus::Failed;
-      res.failure = stepper->failure_reason();
-      {
-        ScopedPhase phase(Phase::Output);
-        csv.row(hooks.diagnostics(t, y.data(), stats()));
-        if (vtk) write_frame(t);
-      }
-      save(t);
-      break;
-    }
-    if (st == AdvanceStatus::RootFound) {
-      if (!hooks.root || !hooks.root(t, stepper->roots_found())) continue;
-      const std::filesystem::path before = res.last_frame;
-      record(t);  // the event ends the run at its root time, with a frame of that state
-      if (vtk && res.last_frame == before) {
-        ScopedPhase phase(Phase::Output);
-        write_frame(t);
-        csv.flush();
-      }
-      res.status = TimeLoopStatus::EndedEarly;
-      break;
-    }
-    record(t);
-    if (hooks.finished && hooks.finished(t)) res.status = TimeLoopStatus::EndedEarly;
-    if (s.checkpoint_every > 0 && t >= next_checkpoint - 1e-12 * t_end) {
-      if ((t - next_checkpoint) / s.checkpoint_every < 1e3) {
-        while (next_checkpoint <= t + 1e-12 * t_end) next_checkpoint += s.checkpoint_every;
-      } else {  // an interval far below the sampling: one jump, not a loop per interval passed
-        next_checkpoint = (std::floor(t / s.checkpoint_every * (1 + 1e-12)) + 1) * s.checkpoint_every;
-      }
-      save(t);
-    }
-    if (!s.quiet) progress.update(t, stats().steps, stepper->stats().last_dt);
-  }
-  if (!s.quiet) progress.finish();
-  if (res.ok()) {
-    {
-      ScopedPhase phase(Phase::Output);
-      csv.flush();
-    }
-    if (s.checkpoint_every > 0) save(t);
-  }
-  res.t_reached = t;
-  res.stats = stats();
-  res.diagnostics = csv.text();
+  TimeLoop loop(system, initial_layout, std::move(opts), std::move(y0), s, hooks);
+  TimeLoopResult res = loop.run();
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (profile.enabled()) {
     std::cout << s.program << " " << s.run << ": ";

@@ -80,6 +80,13 @@ class NeighbourSearch {
 
  private:
   void bin(std::size_t n, Real radius);  // the cell grid of points_
+  // The parts of build(): its argument checks, the capacity of every buffer (a change counts as
+  // an allocation), one particle's row, the thread rows joined into list_.
+  void check_build(std::size_t n, Real radius) const;
+  std::size_t capacity() const;
+  void append_row(std::size_t i, const MinimumImage<D>& image, Real r2max, const Real* r2i, const std::uint32_t* key,
+                  std::vector<std::uint32_t>& out) const;
+  void join_rows(const std::vector<std::uint32_t>* rows, int team);
 
   std::optional<PeriodicBox<D>> box_;
   Real radius_ = 0;

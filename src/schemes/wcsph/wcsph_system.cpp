@@ -84,6 +84,37 @@ Rows<D, K> rows_in_use() {
 }
 }  // namespace
 
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::fill_records(const Real* y, bool viscosity) {
+  using wcsph_detail::Record;
+  const auto x = vector_field<D>(y, layout_, Field::Position);
+  const auto v = vector_field<D>(y, layout_, Field::Velocity);
+  const auto rho = scalar_field(y, layout_, Field::Density);
+  const bool clean = p_.cleaning;
+  const Real* psi = clean ? y + layout_.offset(Field::Psi) : nullptr;
+  const std::size_t n = layout_.particles();
+  const Real m = p_.mass;
+  records_.resize(Record<D>::size * n);
+  const std::uint32_t* particle = slot_particle_.data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
+    const std::size_t p = particle[a];
+    pressure_[p] = tait_pressure(rho[p], p_.rho0, p_.sound_speed);
+    Real* r = records_.data() + Record<D>::size * a;
+    for (int k = 0; k < D; ++k) {
+      r[Record<D>::x + k] = x(k, p);
+      r[Record<D>::v + k] = v(k, p);
+      r[Record<D>::grad_rho + k] = 0;
+    }
+    r[Record<D>::rho] = rho[p];
+    r[Record<D>::volume] = m / rho[p];
+    r[Record<D>::p_over_rho2] = pressure_[p] / (rho[p] * rho[p]);
+    r[Record<D>::q_psi] = clean ? psi[p] / (rho[p] * rho[p]) : 0;  // Omega = 1 for constant h
+    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho[p], p_.rho0, p_.sound_speed) : 0;
+    for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
+  }
+}
+
 // The state is finite with rho > 0 (the stepper's guard checks it before every call).
 template <int D, class Kernel>
 int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
@@ -106,8 +137,8 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   const Real m = p_.mass, h = p_.h, c_h = p_.cleaning_speed();
   const Real dh_c = p_.delta * h * p_.sound_speed;
   const bool viscosity = p_.alpha > 0 && !subsystem;
+  fill_records(y, viscosity);  // before `in`: it holds records_.data()
   using wcsph_detail::Record;
-  records_.resize(Record<D>::size * n);
   const bool corrected_diffusion = dh_c > 0 && p_.diffusion_correction && !subsystem;
   const NeighbourList& nl = search_.list();
   Real grad_scale = 1 / (h * h);
@@ -116,23 +147,6 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
                        m, h, 1 / h, grad_scale, Kernel::support * h * Kernel::support * h, p_.alpha,
                        clean, subsystem, viscosity, dh_c > 0 && !subsystem, corrected_diffusion};
   const std::uint32_t* particle = slot_particle_.data();
-#pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
-    const std::size_t p = particle[a];
-    pressure_[p] = tait_pressure(rho[p], p_.rho0, p_.sound_speed);
-    Real* r = records_.data() + Record<D>::size * a;
-    for (int k = 0; k < D; ++k) {
-      r[Record<D>::x + k] = x(k, p);
-      r[Record<D>::v + k] = v(k, p);
-      r[Record<D>::grad_rho + k] = 0;
-    }
-    r[Record<D>::rho] = rho[p];
-    r[Record<D>::volume] = m / rho[p];
-    r[Record<D>::p_over_rho2] = pressure_[p] / (rho[p] * rho[p]);
-    r[Record<D>::q_psi] = clean ? psi[p] / (rho[p] * rho[p]) : 0;  // Omega = 1 for constant h
-    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho[p], p_.rho0, p_.sound_speed) : 0;
-    for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
-  }
 
   const Rows<D, Kernel> rows = rows_in_use<D, Kernel>();
   // The pairs inside the support: inside_count_[a] of them from inside_[start(a)] on, a row's

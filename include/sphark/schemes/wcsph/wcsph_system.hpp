@@ -53,6 +53,8 @@ class WcsphSystem final : public OdeSystem {
 
  private:
   void update_neighbours(const Real* x);
+  // rhs(): the pressures and the slot records (wcsph_detail::Record) the pair rows read at y.
+  void fill_records(const Real* y, bool viscosity);
   // rhs() at y into scratch_ unless y is evaluated_y_ (then nothing: every derived array is y's).
   void evaluate(Real t, const Real* y);
   Real max_acceleration(const Real* ydot) const;
