@@ -1,5 +1,6 @@
 // The cloud collapse's summary (summary_<variant>.csv) from a run's diagnostics table and last
 // frame, and its figures (vis/cloud_collapse.py).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -36,7 +37,7 @@ Real integrated(const std::vector<Real>& t, const std::vector<Real>& rate) {
 }
 }  // namespace
 
-std::pair<Real, Real> CollapseRun::sink_offset(Real rho_dense_g_cm3) {
+std::pair<Real, Real> CollapseRun::sink_offset(Real fraction_of_max) {
   SpmhdScheme<3>& s = cloud_.scheme;
   const Real nan = std::nan("");
   if (last_frame_y_.empty() || s.sinks() == 0 || s.evaluate(last_frame_t_, last_frame_y_.data()) != 0) return {nan, nan};
@@ -44,7 +45,7 @@ std::pair<Real, Real> CollapseRun::sink_offset(Real rho_dense_g_cm3) {
   const Real* y = last_frame_y_.data();
   const Vec<3> xs = Eigen::Map<const Vec<3>>(y + L.offset(Species::Sink, Field::Position));
   const Vec<3> vs = Eigen::Map<const Vec<3>>(y + L.offset(Species::Sink, Field::Velocity));
-  const Real rho_dense = cloud_.units.density(rho_dense_g_cm3);
+  const Real rho_dense = fraction_of_max * *std::max_element(s.rho().begin(), s.rho().end());
   Vec<3> mx = Vec<3>::Zero(), mv = Vec<3>::Zero();
   Real mass = 0;
   for (std::size_t a = 0; a < s.particles(); ++a) {
@@ -66,7 +67,7 @@ std::string collapse_summary(const std::string& variant, CollapseRun& run, const
   const Peak momentum = peak_of(t, csv_column(csv, "momentum_magnitude"));
   const Real tff = run.cloud().numbers.free_fall_time;
   const Real other = integrated(csv_column(csv, "t"), csv_column(csv, "other_momentum_rate"));
-  const auto [offset, speed] = run.sink_offset(1e-13);
+  const auto [offset, speed] = run.sink_offset(0.01);
   const SinkEventLog& log = run.sink_log();
   std::string refusals;
   for (const auto& [check, count] : log.refusals)

@@ -33,9 +33,10 @@ class CollapseRun final : public SceneRun {
   void write_final_products();
   const CloudCollapse& cloud() const { return cloud_; }
   const SinkEventLog& sink_log() const { return log_; }
-  // The first sink against the gas denser than rho_dense (g/cm^3) at the last frame: its distance
-  // from that gas's centre of mass and its speed relative to it (code units); NaN without a sink.
-  std::pair<Real, Real> sink_offset(Real rho_dense_g_cm3);
+  // The first sink against the gas denser than fraction_of_max x the densest at the last frame
+  // (the disc): its distance from that gas's centre of mass and its speed relative to it (code
+  // units); NaN without a sink.
+  std::pair<Real, Real> sink_offset(Real fraction_of_max);
 
  private:
   void write_step_levels(const std::string& event, Real t, const Real* y);
