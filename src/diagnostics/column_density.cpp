@@ -73,22 +73,40 @@ Real column_kernel(Real q) {
 }
 
 namespace {
-// Adds particle (X, Y, mass, h) to the map: pixel weights F(q) normalised over every pixel centre
-// of its support, the image's or not (so a particle at the edge adds only its share inside).
+// A particle whose support spans more than this many pixels each way carries its analytic weight
+// m F(q) / h^2 (int F 2 pi q dq = 1; the pixel sum's midpoint error is below 1e-4 of its mass, see
+// the test) and is visited on the image's pixels only; a narrower one is normalised over every
+// pixel centre of its support, the image's or not (mass exact to round-off).
+constexpr Real kWidePixels = 16;
+
+template <class K>
+Real weight_at(const ColumnDensityMap& map, int i, int j, Real X, Real Y, Real inv_h, Real dx, Real dy) {
+  const Real a = map.x0 + (i + 0.5) * dx - X, b = map.y0 + (j + 0.5) * dy - Y;
+  return column_kernel<K>(std::sqrt(a * a + b * b) * inv_h);
+}
+
+// Adds particle (X, Y, mass, h) to the map.
 template <class K>
 void splat(ColumnDensityMap& map, Real X, Real Y, Real mass, Real h, std::vector<Real>& weights) {
   const Real dx = (map.x1 - map.x0) / map.nx, dy = (map.y1 - map.y0) / map.ny;
   h = std::max(h, 0.5 * std::max(dx, dy));
-  const Real r = K::support * h;
-  const int i0 = static_cast<int>(std::floor((X - r - map.x0) / dx)), i1 = static_cast<int>(std::ceil((X + r - map.x0) / dx));
-  const int j0 = static_cast<int>(std::floor((Y - r - map.y0) / dy)), j1 = static_cast<int>(std::ceil((Y + r - map.y0) / dy));
+  const Real r = K::support * h, inv_h = 1 / h;
+  int i0 = static_cast<int>(std::floor((X - r - map.x0) / dx)), i1 = static_cast<int>(std::ceil((X + r - map.x0) / dx));
+  int j0 = static_cast<int>(std::floor((Y - r - map.y0) / dy)), j1 = static_cast<int>(std::ceil((Y + r - map.y0) / dy));
   if (i1 < 0 || j1 < 0 || i0 >= map.nx || j0 >= map.ny) return;
+  if (r > kWidePixels * dx && r > kWidePixels * dy) {
+    const Real scale = mass * inv_h * inv_h;
+    for (int j = std::max(j0, 0); j <= std::min(j1, map.ny - 1); ++j)
+      for (int i = std::max(i0, 0); i <= std::min(i1, map.nx - 1); ++i)
+        map.sigma[static_cast<std::size_t>(j) * map.nx + i] += scale * weight_at<K>(map, i, j, X, Y, inv_h, dx, dy);
+    return;
+  }
   const int wide = i1 - i0 + 1;
   weights.assign(static_cast<std::size_t>(wide) * (j1 - j0 + 1), 0);
   Real sum = 0;
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
-      const Real w = column_kernel<K>(std::hypot(map.x0 + (i + 0.5) * dx - X, map.y0 + (j + 0.5) * dy - Y) / h);
+      const Real w = weight_at<K>(map, i, j, X, Y, inv_h, dx, dy);
       weights[static_cast<std::size_t>(j - j0) * wide + (i - i0)] = w;
       sum += w;
     }
@@ -102,13 +120,16 @@ void splat(ColumnDensityMap& map, Real X, Real Y, Real mass, Real h, std::vector
 
 template <class K>
 ColumnDensityMap column_density(const Real* x, const Real* m, const Real* h, std::size_t n, int axis, Real x0, Real x1,
-                                Real y0, Real y1, int nx, int ny) {
+                                Real y0, Real y1, int nx, int ny, const std::function<bool()>& stop) {
   if (axis < 0 || axis > 2 || !(x1 > x0) || !(y1 > y0) || nx < 1 || ny < 1)
     throw std::invalid_argument("column_density: need axis 0..2, a non-empty extent and pixels");
   ColumnDensityMap map{axis, nx, ny, x0, x1, y0, y1, std::vector<Real>(static_cast<std::size_t>(nx) * ny, 0)};
   const int ia = axis == 0 ? 1 : 0, ib = axis == 2 ? 1 : 2;  // the image axes
   std::vector<Real> weights;
-  for (std::size_t b = 0; b < n; ++b) splat<K>(map, x[3 * b + ia], x[3 * b + ib], m[b], h[b], weights);
+  for (std::size_t b = 0; b < n; ++b) {
+    if (b % 64 == 0 && stop && stop()) throw ColumnDensityStopped{};
+    splat<K>(map, x[3 * b + ia], x[3 * b + ib], m[b], h[b], weights);
+  }
   return map;
 }
 
@@ -130,7 +151,7 @@ void write_column_density(const std::string& path, const ColumnDensityMap& map) 
 #define SPHARK_COLUMN_DENSITY(K)                                                                                 \
   template Real column_kernel<K<3>>(Real);                                                                       \
   template ColumnDensityMap column_density<K<3>>(const Real*, const Real*, const Real*, std::size_t, int, Real, \
-                                                 Real, Real, Real, int, int);
+                                                 Real, Real, Real, int, int, const std::function<bool()>&);
 SPHARK_KERNELS(SPHARK_COLUMN_DENSITY)
 #undef SPHARK_COLUMN_DENSITY
 

@@ -169,9 +169,15 @@ int run_scene_main(Scene& scene, int argc, char** argv) {
       status = run_one(scene, name, p, restart ? &*restart : nullptr, why, watchdog);
       done.push_back(name);
       if (status != 0) break;  // a stop signal (checkpoint written) or a failure (last good state written)
+      if (stop_requested()) break;  // a signal after the run ended: no further run
     }
     write_paraview_states(scene, p.core.out, done);
     const int report = scene.report(p.core, p.runs, status == 0);
+    if (const int sig = stop_requested(); sig != 0 && status == 0) {  // after a run ended: its outputs are whole
+      std::fprintf(stderr, "%s: stopped by signal %d after %zu of %zu runs ended\n", program.c_str(), sig, done.size(),
+                   p.runs.size());
+      return record.finish_with_exit_code(128 + sig, "stopped by signal " + std::to_string(sig) + " after the run ended");
+    }
     return record.finish_with_exit_code(status != 0 ? status : report, why);
   } catch (const StopRequested& stop) {  // a set-up loop's poll
     watchdog.disarm();

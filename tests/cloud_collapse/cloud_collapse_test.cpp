@@ -258,6 +258,17 @@ TEST(ColumnDensity, HoldsTheMassOfEveryParticleInsideTheMap) {
                std::invalid_argument);
 }
 
+// A particle wider than 16 pixels carries the analytic weight: its mass within the midpoint error.
+TEST(ColumnDensity, AWideParticleCarriesItsMassWithinTheMidpointError) {
+  for (Real h : {0.1, 0.3, 0.45}) {  // support 2h spans 25.6, 77, 115 pixels of 1/128
+    const Real x[3] = {0.013, 0.2, -0.021}, m = 2.5;
+    const ColumnDensityMap map = column_density<CubicSpline<3>>(x, &m, &h, 1, 1, -1, 1, -1, 1, 256, 256);
+    Real total = 0;
+    for (Real s : map.sigma) total += s * map.pixel_area();
+    EXPECT_NEAR(total, m, 1e-4 * m) << h;
+  }
+}
+
 TEST(StepLevels, CountsPerPowerOfTwoLevelAndTheBlockSpeedup) {
   const Real inf = HUGE_VAL;
   const StepLevels s = step_levels({1.0, 1.5, 2.0, 3.9, 4.0, 8.5, inf, std::nan("")});

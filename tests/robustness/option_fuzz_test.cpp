@@ -40,7 +40,7 @@ const std::vector<Program>& programs() {
         "--reference-rtol", "1e-6", "--no-render", "--threads", "1"},
        true},
       {"gravitating_sphere", {"--particles", "100", "--t-end", "0.01", "--no-render", "--threads", "1"}, true},
-      {"cloud_collapse", {"--particles", "1000", "--t-end", "0.01", "--no-render", "--threads", "1"}, true},
+      {"cloud_collapse", {"--particles", "1000", "--t-end", "0.001", "--output-every", "0", "--no-render", "--threads", "1"}, true},
       {"ghost_static", {"--only", "fig5", "--particles", "2000", "--cost-particles", "1000", "--draws", "2", "--no-plots"}, false},
       {"second_derivative_1d", {"--levels", "2", "--no-plots", "--no-timing"}, false}};
   return p;

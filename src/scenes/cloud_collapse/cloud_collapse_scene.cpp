@@ -31,17 +31,17 @@ void CloudCollapseScene::add_options(OptionParser& p) {
         "particles in the sphere requested (the ambient adds ~0.476 x; below 1000 the ambient's smoothing "
         "lengths exceed half the box)",
         Range{1000, 1e8});
-  p.add("--mass", &params_.mass_msun, "sphere mass [M_sun]", Positive{});
-  p.add("--radius", &params_.radius_cm, "sphere radius [cm]", Positive{});
-  p.add("--sound-speed", &params_.sound_speed_cm_s, "isothermal sound speed of the sphere [cm/s]", Positive{});
-  p.add("--omega", &params_.omega_rad_s, "solid-body rotation rate about z [rad/s]", NonNegative{});
-  p.add("--mass-to-flux", &params_.mass_to_flux, "mass-to-flux ratio in units of the critical", Positive{});
+  p.add("--mass", &params_.mass_msun, "sphere mass [M_sun]", Range{1e-3, 1e3});
+  p.add("--radius", &params_.radius_cm, "sphere radius [cm]", Range{1e14, 1e19});
+  p.add("--sound-speed", &params_.sound_speed_cm_s, "isothermal sound speed of the sphere [cm/s]", Range{1e3, 1e7});
+  p.add("--omega", &params_.omega_rad_s, "solid-body rotation rate about z [rad/s]", Range{0, 1e-10});
+  p.add("--mass-to-flux", &params_.mass_to_flux, "mass-to-flux ratio in units of the critical", Range{0.1, 1e4});
   p.add("--contrast", &params_.density_contrast, "sphere / ambient density", Range{1, 1e4});
-  p.add("--rho-sink", &params_.rho_sink_g_cm3, "sink creation density [g/cm^3]", Positive{});
-  p.add("--r-acc", &params_.accretion_radius_cm, "sink accretion radius [cm]", Positive{});
-  p.add("--alpha", &params_.alpha_visc, "artificial viscosity", NonNegative{});
-  p.add("--alpha-b", &params_.alpha_b, "artificial resistivity of cleaning+resistivity", NonNegative{});
-  p.add("--sigma", &params_.sigma, "cleaning damping, 1/tau = sigma c_h / h", NonNegative{});
+  p.add("--rho-sink", &params_.rho_sink_g_cm3, "sink creation density [g/cm^3]", Range{1e-16, 1});
+  p.add("--r-acc", &params_.accretion_radius_cm, "sink accretion radius [cm]", Range{1e10, 1e17});
+  p.add("--alpha", &params_.alpha_visc, "artificial viscosity", Range{0, 10});
+  p.add("--alpha-b", &params_.alpha_b, "artificial resistivity of cleaning+resistivity", Range{0, 10});
+  p.add("--sigma", &params_.sigma, "cleaning damping, 1/tau = sigma c_h / h", Range{0, 10});
   p.add("--overclean", &params_.overclean, "c_h = overclean x fast speed", Range{1, 100});
   p.add_flag("--local-ch", &local_ch_, "each particle's own c_h (its fast speed) instead of one global c_h");
   p.add("--step-floor", &params_.step_floor_tff, "the run fails (exit 3) when its steps stay below this [t_ff]",

@@ -11,6 +11,7 @@
 #include "sphark/diagnostics/column_density.hpp"
 #include "sphark/diagnostics/step_levels.hpp"
 #include "sphark/io/atomic_file.hpp"
+#include "sphark/run/signals.hpp"
 
 namespace sphark {
 
@@ -140,10 +141,11 @@ void CollapseRun::write_step_levels(const std::string& event, Real t, const Real
   write_file_atomically(dir_ / "step_levels.csv", levels_csv_);
 }
 
+// Skipped once a stop signal arrived (the process must end within a second).
 void CollapseRun::write_final_products() {
-  if (last_frame_y_.empty() || dir_.empty()) return;
+  if (last_frame_y_.empty() || dir_.empty() || stop_requested()) return;
   write_step_levels("end", last_frame_t_, last_frame_y_.data());
-  write_maps(last_frame_y_.data());
+  if (!stop_requested()) write_maps(last_frame_y_.data());
 }
 
 // Column density along y (seed 000, Fig. 4), g/cm^2 over code lengths: the whole cloud (2.5 R
@@ -169,8 +171,13 @@ void CollapseRun::write_maps(const Real* y) {
   };
   for (const View& v : {View{"column_density_y.csv", 0, 0, 1.25 * R},
                         View{"column_density_y_zoom.csv", centre[0], centre[2], 0.15 * R}}) {
-    ColumnDensityMap map = column_density(x.data(), s.masses().data(), s.h().data(), n, 1, v.cx - v.half,
-                                          v.cx + v.half, v.cz - v.half, v.cz + v.half, 400, 400);
+    ColumnDensityMap map;
+    try {
+      map = column_density(x.data(), s.masses().data(), s.h().data(), n, 1, v.cx - v.half, v.cx + v.half,
+                           v.cz - v.half, v.cz + v.half, 256, 256, [] { return stop_requested() != 0; });
+    } catch (const ColumnDensityStopped&) {
+      return;  // a stop signal: no map rather than a late exit
+    }
     for (Real& value : map.sigma) value *= sigma_unit;
     write_column_density((dir_ / v.file).string(), map);
   }
