@@ -135,7 +135,7 @@ ColumnDensityMap column_density(const Real* x, const Real* m, const Real* h, std
 
 void write_column_density(const std::string& path, const ColumnDensityMap& map) {
   AtomicFile out(path);
-  char line[64];
+  char line[128];
   std::snprintf(line, sizeof line, "%d,%d,%d,", map.axis, map.nx, map.ny);
   out << line;
   std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g\n", map.x0, map.x1, map.y0, map.y1);

@@ -70,8 +70,12 @@ std::string collapse_summary(const std::string& variant, CollapseRun& run, const
   const auto [offset, speed] = run.sink_offset(0.01);
   const SinkEventLog& log = run.sink_log();
   std::string refusals;
-  for (const auto& [check, count] : log.refusals)
-    refusals += (refusals.empty() ? "" : " ") + to_string(check) + ":" + std::to_string(count);
+  for (const auto& [check, count] : log.refusals) {
+    if (!refusals.empty()) refusals += ' ';
+    refusals += to_string(check);
+    refusals += ':';
+    refusals += std::to_string(count);
+  }
   std::ostringstream s;
   s << "variant,sphere_particles,particles,t_reached_over_tff,sink_time_over_tff,n_sinks,sink_mass,accreted,"
        "peak_density,peak_density_t,mean_h_divB_over_B_at_peak_density,max_mean_h_divB_over_B,peak_momentum,"

@@ -20,6 +20,7 @@
 #include "sphark/operators/pair_geometry.hpp"
 #include "sphark/operators/pressure_force.hpp"
 #include "sphark/operators/signal_velocity_dissipation.hpp"
+#include "sphark/simd/lane_blocks.hpp"
 #include "sphark/simd/lanes.hpp"
 
 #pragma GCC diagnostic push
@@ -95,22 +96,6 @@ struct NeighbourFields {
   }
 };
 
-// The W entries of list from k on, padded with the last: true for a full block.
-template <int W>
-inline bool block_of(const std::uint32_t* list, std::size_t k, std::size_t end, const std::uint32_t*& b,
-                     std::uint32_t (&tail)[W]) {
-  b = list + k;
-  if (k + W <= end) return true;
-  for (int l = 0; l < W; ++l) tail[l] = list[k + l < end ? k + l : end - 1];
-  b = tail;
-  return false;
-}
-
-template <class S>
-inline auto first_lanes(std::size_t valid) {
-  return simd::lane_numbers<S>() < simd::broadcast<S>(static_cast<Real>(valid));
-}
-
 // Particle a's interacting neighbours in list order into inside (room: the row plus W); their number.
 template <class S, int D>
 inline std::size_t interacting_neighbours(const RowInput<D>& in, std::size_t a, std::uint32_t* inside) {
@@ -124,12 +109,12 @@ inline std::size_t interacting_neighbours(const RowInput<D>& in, std::size_t a, 
   const std::uint32_t* b = nullptr;
   std::size_t n = 0;
   for (std::size_t k = in.offsets[a]; k < end; k += W) {
-    const bool full = block_of<W>(in.indices, k, end, b, tail);
+    const bool full = simd::block_of<W>(in.indices, k, end, b, tail);
     const NeighbourFields<S, D, R::h + 1> fb(in, b);
     const S r2 = in.image(x_a - fb.template vec<D>(R::x)).squaredNorm();
     const S reach = in.support * simd::max(h_a, fb[R::h]);
     auto close = (r2 < reach * reach) & (r2 != S{});
-    if (!full) close = close & first_lanes<S>(end - k);
+    if (!full) close = close & simd::first_lanes<S>(end - k);
     n = simd::append_lanes<W>(simd::mask_bits(close), b, inside, n);
   }
   return n;
@@ -188,7 +173,7 @@ inline void add_pairs(LaneSums<S, D>& s, const ParticleA<S, D>& pa, const RowInp
   S F_a = pa.grad_scale * K::unit_f_over_r(r * pa.inv_h, pa.h * inv_r);
   S F_b = fb[R::grad_scale] * K::unit_f_over_r(r * fb[R::inv_h], fb[R::h] * inv_r);
   if (!full) {
-    const auto inside = first_lanes<S>(valid);
+    const auto inside = simd::first_lanes<S>(valid);
     F_a = inside ? F_a : S{}, F_b = inside ? F_b : S{};
   }
   const VD g_a = F_a * x_ab, g_b = F_b * x_ab;
@@ -248,7 +233,7 @@ inline PairSums<D> pair_row(const RowInput<D>& in, std::size_t a, std::uint32_t*
   std::uint32_t tail[W];
   const std::uint32_t* b = nullptr;
   for (std::size_t k = 0; k < n; k += W) {
-    const bool full = block_of<W>(inside, k, n, b, tail);
+    const bool full = simd::block_of<W>(inside, k, n, b, tail);
     const NeighbourFields<S, D, R::size> fb(in, b);
     add_pairs<S, D, K>(sums, pa, in, fb, in.image(x_a - fb.template vec<D>(R::x)), full, n - k);
   }

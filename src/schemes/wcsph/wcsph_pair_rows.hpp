@@ -22,6 +22,7 @@
 #include "sphark/operators/density_diffusion.hpp"
 #include "sphark/operators/pressure_force.hpp"
 #include "sphark/operators/renormalised_gradient.hpp"
+#include "sphark/simd/lane_blocks.hpp"
 #include "sphark/simd/lanes.hpp"
 
 #pragma GCC diagnostic push
@@ -90,23 +91,6 @@ struct Block {
   simd::LaneVec<S, D> grad_w;    // grad_a W_ab = F x_ab
 };
 
-// The W candidates of the list from entry k on, padded with the last: true for a full block.
-template <int W>
-inline bool candidates(const std::uint32_t* list, std::size_t k, std::size_t end, const std::uint32_t*& b,
-                       std::uint32_t (&tail)[W]) {
-  b = list + k;
-  if (k + W <= end) return true;
-  for (int l = 0; l < W; ++l) tail[l] = list[k + l < end ? k + l : end - 1];
-  b = tail;
-  return false;
-}
-
-// Lanes l < valid: true.
-template <class S>
-inline auto first_lanes(std::size_t valid) {
-  return simd::lane_numbers<S>() < simd::broadcast<S>(static_cast<Real>(valid));
-}
-
 template <class S, int D>
 inline simd::LaneVec<S, D> position_of(const RowInput<D>& in, std::size_t a) {
   return simd::LaneVec<S, D>::broadcast(Eigen::Map<const Vec<D>>(in.record(a) + Record<D>::x));
@@ -125,10 +109,10 @@ inline std::size_t neighbours_inside(const RowInput<D>& in, std::size_t a, std::
   const std::uint32_t* b = nullptr;
   std::size_t n = 0;
   for (std::size_t k = in.offsets[a]; k < end; k += W) {
-    const bool full = candidates<W>(in.indices, k, end, b, tail);
+    const bool full = simd::block_of<W>(in.indices, k, end, b, tail);
     const NeighbourFields<S, Record<D>::groups_of(D)> fields(in, b);
     auto close = in.image(x_a - fields.template vec<D>(Record<D>::x)).squaredNorm() < in.support2;
-    if (!full) close = close & first_lanes<S>(end - k);
+    if (!full) close = close & simd::first_lanes<S>(end - k);
     n = simd::append_lanes<W>(simd::mask_bits(close), b, inside, n);
   }
   return n;
@@ -150,12 +134,12 @@ inline void for_each_block(const RowInput<D>& in, std::size_t a, InsideRow row, 
   std::uint32_t tail[W];
   const std::uint32_t* b = nullptr;
   for (std::size_t k = 0; k < row.end; k += W) {
-    const bool full = candidates<W>(row.inside, k, row.end, b, tail);
+    const bool full = simd::block_of<W>(row.inside, k, row.end, b, tail);
     Block<S, D, Groups> p{NeighbourFields<S, Groups>(in, b), V::zero(), S{}, V::zero()};
     p.x_ab = in.image(x_a - p.b.template vec<D>(Record<D>::x));
     const S q = simd::sqrt(p.x_ab.squaredNorm()) * in.inv_h;
     p.F = in.grad_scale * K::unit_f_over_r(q, 1.0 / q);
-    if (!full) p.F = first_lanes<S>(row.end - k) ? p.F : S{};
+    if (!full) p.F = simd::first_lanes<S>(row.end - k) ? p.F : S{};
     p.grad_w = p.F * p.x_ab;
     pair_terms(p);
   }

@@ -1,0 +1,28 @@
+#pragma once
+// Blocks of W neighbour indices for the lane-generic pair rows (WCSPH and SPMHD): a row's entries
+// taken W at a time, the last block padded with its last entry, and the mask of its valid lanes.
+#include <cstddef>
+#include <cstdint>
+
+#include "sphark/simd/lanes.hpp"
+
+namespace sphark::simd {
+
+// The W entries of list from k on (of end), padded with the last: true for a full block.
+template <int W>
+inline bool block_of(const std::uint32_t* list, std::size_t k, std::size_t end, const std::uint32_t*& b,
+                     std::uint32_t (&tail)[W]) {
+  b = list + k;
+  if (k + W <= end) return true;
+  for (int l = 0; l < W; ++l) tail[l] = list[k + l < end ? k + l : end - 1];
+  b = tail;
+  return false;
+}
+
+// Lanes l < valid: true.
+template <class S>
+inline auto first_lanes(std::size_t valid) {
+  return lane_numbers<S>() < broadcast<S>(static_cast<Real>(valid));
+}
+
+}  // namespace sphark::simd
