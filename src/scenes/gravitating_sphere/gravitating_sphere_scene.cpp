@@ -61,6 +61,8 @@ void GravitatingSphereScene::check_options(const OptionParser& p, CoreOptions& c
   if (params_.profile == "uniform" && !p.was_given("--alpha")) params_.alpha_visc = 0;
   params_.particles = static_cast<std::size_t>(particles_);
   params_.sinks = sinks_ == "on";
+  for (const char* o : {"--rho-sink", "--r-acc"})
+    if (!params_.sinks && p.was_given(o)) p.fail(o, "needs --sinks on");
   params_.gravity = parse_gravity_solver(gravity_);
   limit_to_t_end(p, "--diagnostics-every", diagnostics_every_, core.t_end);
 }
