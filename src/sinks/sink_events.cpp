@@ -80,6 +80,10 @@ std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& s, Real t, cons
     moving.v = y + L.offset(Field::Velocity);
     moving.mass = s.masses().data();
     const SinkUpdate fed = accrete(moving, sinks, params);
+    if (fed.removed.size() >= s.particles()) {
+      log.gas_exhausted = true;
+      return std::nullopt;
+    }
     if (!fed.removed.empty()) {
       log.accreted_particles += static_cast<long>(fed.removed.size());
       return apply(s, y, fed);
@@ -93,6 +97,10 @@ std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& s, Real t, cons
   const SinkUpdate created = create_sink_if_allowed(gas.view, sinks, params, &why);
   if (created.removed.empty()) {
     if (why != SinkCheck::no_candidate) ++log.refusals[why];
+    return std::nullopt;
+  }
+  if (created.removed.size() >= s.particles()) {
+    log.gas_exhausted = true;
     return std::nullopt;
   }
   ++log.creations;

@@ -21,6 +21,9 @@ struct SinkEventLog {
   long accreted_particles = 0;
   Real first_creation_time = -1;
   std::map<SinkCheck, long> refusals;  // candidate refused, by the first check that failed
+  // An event would have taken every gas particle (an isolated cloud collapsing onto its sink):
+  // it is not made (the scheme needs gas) and the run should end (SceneRun::finished).
+  bool gas_exhausted = false;
 };
 
 // The sinks of state y (accretion radius params.accretion_radius each).

@@ -7,6 +7,7 @@
 #include "sphark/analytic/free_fall.hpp"
 #include "sphark/gravity/kernel_softening.hpp"
 #include "sphark/operators/barotropic_eos.hpp"
+#include "sphark/sinks/sink_run.hpp"
 
 namespace sphark {
 
@@ -78,10 +79,7 @@ SinkParams cloud_sink_params(const CloudCollapseParams& p, const CloudNumbers& c
   s.creation_radius = p.creation_radius_over_racc * c.accretion_radius;
   s.G = 1;
   // the gravity solver's kernel-softened pair potential, symmetrised (Phantom's ptmass_create)
-  s.pair_potential = [](Real r, Real h_a, Real h_b) {
-    using KS = KernelSoftening<CubicSpline<3>>;
-    return 0.5 * (KS::phi(r, h_a) + KS::phi(r, h_b));
-  };
+  s.pair_potential = cubic_spline_pair_potential();
   const Real half = 0.5 * p.box_over_radius * c.radius;
   PeriodicBox<3> box;
   box.lo = Vec<3>::Constant(-half);

@@ -24,26 +24,10 @@ Real minimum(const std::vector<Real>& v) {
   return m;
 }
 
-// Angular momentum about z of gas and sinks (orbital) plus the sinks' spins.
-Real angular_momentum_z(const SpmhdScheme<3>& s, const Real* y) {
-  const StateLayout& L = s.layout();
-  const auto x = vector_field<3>(y, L, Field::Position);
-  const auto v = vector_field<3>(y, L, Field::Velocity);
-  Real lz = 0;
-  for (std::size_t a = 0; a < s.particles(); ++a) lz += s.masses()[a] * (x(0, a) * v(1, a) - x(1, a) * v(0, a));
-  const std::size_t ns = s.sinks();
-  if (ns == 0) return lz;
-  const auto xs = vector_field<3>(y, L, Field::Position, Species::Sink);
-  const auto vs = vector_field<3>(y, L, Field::Velocity, Species::Sink);
-  const auto spin = vector_field<3>(y, L, Field::Spin, Species::Sink);
-  const Real* ms = y + L.offset(Species::Sink, Field::Mass);
-  for (std::size_t k = 0; k < ns; ++k) lz += ms[k] * (xs(0, k) * vs(1, k) - xs(1, k) * vs(0, k)) + spin(2, k);
-  return lz;
-}
 }  // namespace
 
 CollapseRun::CollapseRun(const CloudCollapseParams& p, Real diagnostics_every)
-    : p_(p), cloud_(p), every_(diagnostics_every) {}
+    : p_(p), cloud_(p), every_(diagnostics_every), sinks_(cloud_.sinks) {}
 
 std::vector<std::string> CollapseRun::columns() const {
   return {"t", "t_over_tff", "max_density", "mean_h_divB_over_B", "max_h_divB_over_B", "momentum_magnitude",
@@ -63,10 +47,11 @@ std::vector<Real> CollapseRun::diagnostics(Real t, const Real* y, const StepperS
   const StateLayout& L = s.layout();
   const std::size_t ns = s.sinks();
   const Real* xs = ns ? y + L.offset(Species::Sink, Field::Position) : nullptr;
+  const std::array<Real, 2> sink = SinkRunSupport::values(s, y);
   const Vec<3> p(d.momentum[0], d.momentum[1], d.momentum[2]);
   return {t, t / cloud_.numbers.free_fall_time, rho_max * cloud_.units.density_g_cm3(), d.mean_h_divb_over_b,
           d.max_h_divb_over_b, p.norm(), d.kinetic_energy, d.magnetic_energy, d.thermal_energy, d.psi_energy,
-          d.potential_energy, d.total_energy, static_cast<Real>(ns), ns ? y[L.offset(Species::Sink, Field::Mass)] : 0,
+          d.potential_energy, d.total_energy, sink[0], sink[1],
           ns ? xs[0] : kNaN, ns ? xs[1] : kNaN, ns ? xs[2] : kNaN, angular_momentum_z(s, y), budget.total.norm(),
           budget.tensile.norm(), (budget.total - budget.tensile).norm(), steps_ok ? minimum(courant) : kNaN,
           steps_ok ? minimum(force) : kNaN, static_cast<Real>(s.particles()), static_cast<Real>(st.steps),
@@ -80,7 +65,7 @@ ParticleFrame CollapseRun::frame(Real t, const Real* y) {
 }
 
 std::vector<std::pair<std::string, Real*>> CollapseRun::saved_numbers() {
-  return {{"sink_creations", &creations_}, {"accreted_particles", &accreted_}, {"first_sink_time", &first_creation_t_}};
+  return sinks_.saved_numbers();
 }
 
 void CollapseRun::settings(TimeLoopSettings& s) {
@@ -92,33 +77,22 @@ void CollapseRun::settings(TimeLoopSettings& s) {
 }
 
 std::optional<TimeLoopHooks::Resize> CollapseRun::after_step(Real t, const Real* y) {
-  log_.creations = static_cast<long>(creations_);
-  log_.accreted_particles = static_cast<long>(accreted_);
-  log_.first_creation_time = first_creation_t_;
-  const long created_before = log_.creations;
-  std::optional<TimeLoopHooks::Resize> r = sink_events(cloud_.scheme, t, y, cloud_.sinks, log_);
-  creations_ = static_cast<Real>(log_.creations);
-  accreted_ = static_cast<Real>(log_.accreted_particles);
-  first_creation_t_ = log_.first_creation_time;
-  if (r && log_.creations > created_before) {
+  std::optional<TimeLoopHooks::Resize> r = sinks_.after_step(cloud_.scheme, t, y);
+  if (sinks_.created()) {
     std::fprintf(stderr, "cloud_collapse: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",
-                 log_.creations, t / cloud_.numbers.free_fall_time, cloud_.scheme.particles());
+                 sinks_.log().creations, t / cloud_.numbers.free_fall_time, cloud_.scheme.particles());
     write_step_levels("sink_formation", t, r->y.data());
   }
   return r;
 }
 
 StateLayout CollapseRun::restart_layout(const Checkpoint& c) {
-  std::size_t gas = 0, sinks = 0;
-  for (const CheckpointSpecies& s : c.species) (s.name == "sink" ? sinks : gas) = s.particles;
-  std::vector<std::size_t> kept(gas);
-  std::iota(kept.begin(), kept.end(), std::size_t{0});  // equal masses: which particles does not matter
-  cloud_.scheme.change_particles(kept, sinks);
+  const StateLayout L = SinkRunSupport::restart_layout(cloud_.scheme, c);
   std::ifstream in(dir_ / "step_levels.csv");
   std::ostringstream text;
   text << in.rdbuf();
   levels_csv_ = text.str();
-  return cloud_.scheme.layout();
+  return L;
 }
 
 // step_levels.csv: per event, the gas particles' own stable steps min(Courant, force) on

@@ -10,7 +10,7 @@
 #include "sphark/diagnostics/spmhd_diagnostics.hpp"
 #include "sphark/run/scene.hpp"
 #include "sphark/scenes/cloud_collapse/cloud_collapse.hpp"
-#include "sphark/sinks/sink_events.hpp"
+#include "sphark/sinks/sink_run.hpp"
 
 namespace sphark {
 
@@ -32,7 +32,7 @@ class CollapseRun final : public SceneRun {
   // After the run: the step levels and the column-density maps of the last frame (its state).
   void write_final_products();
   const CloudCollapse& cloud() const { return cloud_; }
-  const SinkEventLog& sink_log() const { return log_; }
+  const SinkEventLog& sink_log() const { return sinks_.log(); }
   // The first sink against the gas denser than fraction_of_max x the densest at the last frame
   // (the disc): its distance from that gas's centre of mass and its speed relative to it (code
   // units); NaN without a sink.
@@ -47,9 +47,7 @@ class CollapseRun final : public SceneRun {
   Real every_;
   std::filesystem::path dir_;
   SpmhdFrame frame_;
-  SinkEventLog log_;
-  // the log's counts as checkpointed numbers (the log is reloaded from them before every event)
-  Real creations_ = 0, accreted_ = 0, first_creation_t_ = -1;
+  SinkRunSupport sinks_;  // the sink events, their checkpointed log, the restart's layout
   std::vector<Real> last_frame_y_;  // the state of the last frame written
   Real last_frame_t_ = 0;
   std::string levels_csv_;  // step_levels.csv so far

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+
+#include "sphark/gravity/kernel_softening.hpp"
+#include "sphark/sinks/sink_run.hpp"
 
 namespace sphark {
 
@@ -18,7 +22,23 @@ SpmhdOptions gravitating_sphere_options(const GravitatingSphereParams& p) {
   o.gravity_solver = p.gravity;
   o.gravity_theta = p.theta;
   o.force_courant = p.force_courant;
+  if (p.sinks) {  // as the cloud collapse: kernel-softened sink gravity inside r_acc
+    o.sink_particles = true;
+    o.sink_softening = {PointMassSoftening::Kernel, p.accretion_radius / CubicSpline<3>::support};
+  }
   return o;
+}
+
+SinkParams gravitating_sphere_sink_params(const GravitatingSphereParams& p) {
+  if (p.sinks && !(p.rho_sink > 0 && p.accretion_radius > 0))
+    throw std::invalid_argument("gravitating sphere: sinks need rho_sink > 0 and r_acc > 0");
+  SinkParams s;
+  s.rho_sink = p.rho_sink;
+  s.accretion_radius = p.accretion_radius;
+  s.creation_radius = 5 * p.accretion_radius;  // as the cloud collapse (Phantom r_crit)
+  s.G = 1;
+  s.pair_potential = cubic_spline_pair_potential();
+  return s;
 }
 
 namespace {
@@ -54,6 +74,28 @@ std::vector<Real> lagrangian_radii(const Real* x, std::size_t n, const std::vect
   for (Real f : fractions) {
     const auto k = static_cast<std::size_t>(std::ceil(f * static_cast<Real>(n)));
     out.push_back(r[std::clamp<std::size_t>(k, 1, n) - 1]);
+  }
+  return out;
+}
+
+std::vector<Real> lagrangian_radii(const Real* x, const Real* m, std::size_t n, const std::vector<Real>& fractions) {
+  Vec<3> centre = Vec<3>::Zero();
+  Real total = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    centre += m[a] * Eigen::Map<const Vec<3>>(x + 3 * a);
+    total += m[a];
+  }
+  centre /= total;
+  std::vector<std::pair<Real, Real>> rm(n);  // (distance, mass)
+  for (std::size_t a = 0; a < n; ++a) rm[a] = {(Eigen::Map<const Vec<3>>(x + 3 * a) - centre).norm(), m[a]};
+  std::sort(rm.begin(), rm.end());
+  std::vector<Real> out;
+  for (Real f : fractions) {
+    const Real target = f * total - 1e-12 * total;
+    Real enclosed = 0;
+    std::size_t k = 0;
+    while (k + 1 < n && enclosed + rm[k].second < target) enclosed += rm[k++].second;
+    out.push_back(rm[k].first);
   }
   return out;
 }
