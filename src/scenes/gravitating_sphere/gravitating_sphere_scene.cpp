@@ -101,7 +101,12 @@ void GravitatingSphereScene::finished(const std::string&, SceneRun& r, const Tim
   if (params_.sinks) {
     const SinkEventLog& log = dynamic_cast<GravitatingSphereRun&>(r).sink_log();
     std::string refused;
-    for (const auto& [check, count] : log.refusals) refused += " " + to_string(check) + " " + std::to_string(count);
+    for (const auto& [check, count] : log.refusals) {
+      refused += ' ';
+      refused += to_string(check);
+      refused += ' ';
+      refused += std::to_string(count);
+    }
     std::fprintf(stderr, "gravitating_sphere: sinks created %ld, gas accreted %ld, candidates refused:%s\n",
                  log.creations, log.accreted_particles, refused.empty() ? " none" : refused.c_str());
   }
