@@ -25,4 +25,24 @@ inline auto first_lanes(std::size_t valid) {
   return lane_numbers<S>() < broadcast<S>(static_cast<Real>(valid));
 }
 
+// The first 4 x Groups fields of the records of the W neighbours b (records of `stride` Reals),
+// one lane per neighbour: what a pair row reads of its neighbours.
+template <class S, int Groups>
+struct GatheredFields {
+  S f[4 * Groups];
+  GatheredFields(const Real* records, int stride, const std::uint32_t* b) {
+    for (int g = 0; g < Groups; ++g) {
+      const Group<S> group = gather_group<S>(records, stride, b, 4 * g);
+      for (int k = 0; k < 4; ++k) f[4 * g + k] = group.f[k];
+    }
+  }
+  S operator[](int k) const { return f[k]; }
+  template <int N>
+  LaneVec<S, N> vec(int k) const {
+    LaneVec<S, N> v;
+    for (int i = 0; i < N; ++i) v[i] = f[k + i];
+    return v;
+  }
+};
+
 }  // namespace sphark::simd

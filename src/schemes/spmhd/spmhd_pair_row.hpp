@@ -72,26 +72,13 @@ struct PairSums {
 
 // The first `fields` fields of W neighbours' records, as lanes.
 template <class S, int D, int Fields>
-struct NeighbourFields {
-  static constexpr int groups = (Fields + 3) / 4;
-  S f[4 * groups];
-  NeighbourFields(const RowInput<D>& in, const std::uint32_t* b) {
-    for (int g = 0; g < groups; ++g) {
-      const simd::Group<S> group = simd::gather_group<S>(in.records, Record<D>::size, b, 4 * g);
-      for (int k = 0; k < 4; ++k) f[4 * g + k] = group.f[k];
-    }
-  }
-  S operator[](int k) const { return f[k]; }
-  template <int N>
-  simd::LaneVec<S, N> vec(int k) const {
-    simd::LaneVec<S, N> v;
-    for (int i = 0; i < N; ++i) v[i] = f[k + i];
-    return v;
-  }
+struct NeighbourFields : simd::GatheredFields<S, (Fields + 3) / 4> {
+  NeighbourFields(const RowInput<D>& in, const std::uint32_t* b)
+      : simd::GatheredFields<S, (Fields + 3) / 4>(in.records, Record<D>::size, b) {}
   simd::LaneMat<S, D> mat(int k) const {
     simd::LaneMat<S, D> M;
     for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) M.m[i][j] = f[k + D * i + j];
+      for (int j = 0; j < D; ++j) M.m[i][j] = this->f[k + D * i + j];
     return M;
   }
 };

@@ -64,22 +64,10 @@ struct ForceRow {
 
 // The first `Groups` groups of W neighbours' records, as lanes: field k of lane l is f[k][l].
 template <class S, int Groups>
-struct NeighbourFields {
-  S f[4 * Groups];
+struct NeighbourFields : simd::GatheredFields<S, Groups> {
   template <int D>
-  NeighbourFields(const RowInput<D>& in, const std::uint32_t* b) {
-    for (int g = 0; g < Groups; ++g) {
-      const simd::Group<S> group = simd::gather_group<S>(in.records, Record<D>::size, b, 4 * g);
-      for (int k = 0; k < 4; ++k) f[4 * g + k] = group.f[k];
-    }
-  }
-  S operator[](int k) const { return f[k]; }
-  template <int D>
-  simd::LaneVec<S, D> vec(int k) const {
-    simd::LaneVec<S, D> v;
-    for (int i = 0; i < D; ++i) v[i] = f[k + i];
-    return v;
-  }
+  NeighbourFields(const RowInput<D>& in, const std::uint32_t* b)
+      : simd::GatheredFields<S, Groups>(in.records, Record<D>::size, b) {}
 };
 
 // One block of W interacting neighbours of particle a.
