@@ -30,7 +30,8 @@ std::vector<std::string> operator+(std::vector<std::string> a, const std::vector
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 std::string outcome(const fs::path& run_json) {
-  const Json* o = read_run_record(run_json).find("outcome");
+  const Json record = read_run_record(run_json);  // find() points into it: keep it alive
+  const Json* o = record.find("outcome");
   return o ? o->as_string() : "(none)";
 }
 
