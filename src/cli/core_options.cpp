@@ -20,6 +20,8 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
   p.add("--rtol", &o.rtol, "relative tolerance of the adaptive step", Positive{});
   p.add("--atol", &o.atol, "absolute tolerance of the adaptive step", Positive{});
   p.add("--dt", &o.dt, "fixed time step, 0 = adaptive", NonNegative{});
+  p.add_switch("--step-cap", &o.step_cap,
+               "adaptive steps also bounded by the scheme's stable (CFL) step; off: by the error control alone");
   p.add("--output-every", &o.output_every,
         "simulated time between output frames, 0 = first and last only", NonNegative{});
   p.add("--threads", &o.threads, "OpenMP threads, 0 = OpenMP default", NonNegative{});
@@ -46,6 +48,7 @@ StepperOptions stepper_options(const CoreOptions& o) {
   s.rtol = o.rtol;
   s.atol = {o.atol};
   s.fixed_dt = o.dt;
+  s.cap_by_stability = o.step_cap;
   return s;
 }
 

@@ -70,24 +70,28 @@ TEST(ExampleRecord, RunJsonHoldsEveryOptionTheFilesAndTheOutcome) {
   EXPECT_EQ(options.as_object().size(), names.size());
   for (const auto& n : names) EXPECT_NE(options.find(n), nullptr) << n << " missing from run.json";
   EXPECT_EQ(options.find("amplitude")->as_number(), 50);
-  EXPECT_EQ(options.find("rtol")->as_number(), 1e-4);  // a default, recorded too
+  EXPECT_EQ(options.find("rtol")->as_number(), 1e-2);  // a default, recorded too
+  EXPECT_EQ(options.find("step-cap")->as_bool(), false);
   EXPECT_EQ(strings(*r.find("options_given")),
             (std::vector<std::string>{"out", "t-end", "output-every", "threads", "no-render", "amplitude", "spacing"}));
   EXPECT_EQ(r.find("threads")->as_number(), 1);
   EXPECT_EQ(r.find("outcome")->as_string(), "ok");
   EXPECT_EQ(r.find("reason"), nullptr);
   const std::vector<std::string> files = strings(*r.find("files"));
-  for (const char* expected : {"cleaned/diagnostics.csv", "cleaned/drop.pvd", "cleaned/drop_00002.vtp",
-                               "control/diagnostics.csv", "run.json", "summary.csv", "view.pvsm"})
+  for (const char* expected : {"seed_cleaned/diagnostics.csv", "seed_control/drop.pvd", "cleaned/diagnostics.csv",
+                               "cleaned/drop.pvd", "cleaned/drop_00002.vtp", "control/diagnostics.csv", "run.json",
+                               "summary.csv", "view.pvsm"})
     EXPECT_NE(std::find(files.begin(), files.end(), expected), files.end()) << expected;
   for (const auto& file : files) EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
   std::size_t on_disk = 0;
   for (const auto& e : fs::recursive_directory_iterator(out)) on_disk += e.is_regular_file();
   EXPECT_EQ(files.size(), on_disk);  // a fresh folder: every file in it was written by this run
-  // the view: cleaned | control, both coloured by pressure, every named file and array present
+  // the view: the seed's cleaned | control, delta-SPH's cleaned | control, coloured by pressure,
+  // every named file and array present
   const ParaViewStateRefs v = read_paraview_state(out / "view.pvsm");
-  EXPECT_EQ(v.files, (std::vector<std::string>{"cleaned/drop.pvd", "control/drop.pvd"}));
-  ASSERT_EQ(v.colourings.size(), 2u);
+  EXPECT_EQ(v.files, (std::vector<std::string>{"seed_cleaned/drop.pvd", "seed_control/drop.pvd", "cleaned/drop.pvd",
+                                               "control/drop.pvd"}));
+  ASSERT_EQ(v.colourings.size(), 4u);
   for (const auto& c : v.colourings) {
     EXPECT_EQ(c.array, "pressure");
     EXPECT_EQ(c.association, "points");
@@ -105,7 +109,7 @@ TEST(ExampleRecord, AReRunFromRunJsonIsBitIdenticalAndTheCommandLineOverridesIt)
                 dir.path()).exit_code, 0);
   const Finished again = run(bin, {"--config", (a / "run.json").string(), "--out", b.string()}, dir.path());
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  for (const char* run_dir : {"cleaned", "control"}) {
+  for (const char* run_dir : {"seed_cleaned", "seed_control", "cleaned", "control"}) {
     const std::string da = slurp(a / run_dir / "diagnostics.csv"), db = slurp(b / run_dir / "diagnostics.csv");
     EXPECT_GT(count(da, '\n'), 10u);
     EXPECT_EQ(da, db) << run_dir;  // bit for bit: every value is written with %.17g

@@ -167,9 +167,10 @@ struct CoreOptions {
   int threads = 0;                    // OpenMP threads; 0 = OpenMP default
   bool render = true;                 // render PNGs at the end (--no-render turns off)
   bool profile = false;               // --profile: print the wall-time split (core/profile.hpp)
+  bool step_cap = true;               // adaptive steps also bounded by the scheme's CFL step (--step-cap)
 };
 
-// Registers --out, --t-end, --stepper, --rtol, --atol, --dt, --output-every, --threads,
+// Registers --out, --t-end, --stepper, --rtol, --atol, --dt, --step-cap, --output-every, --threads,
 // --no-render, --profile with the current values of `o` as defaults. `steppers` is the list of valid
 // --stepper names (it lives in integrate/); o.stepper must be one of them.
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers);
@@ -180,7 +181,8 @@ void add_core_options(OptionParser& p, CoreOptions& o);
 // "leapfrog-rev".
 std::vector<std::string> core_stepper_names();
 
-// StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt.
+// StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt,
+// cap_by_stability = step_cap.
 StepperOptions stepper_options(const CoreOptions& o);
 // The same for one run of `system`: when --stepper ark-imex meets a run without a stiff part
 // (e.g. no psi damping), says so in one line on stderr (unless `program` is empty) and uses
