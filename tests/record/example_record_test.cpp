@@ -159,8 +159,8 @@ TEST(ExampleRecord, AFailedAndAStoppedRunSaySoAndWhy) {
   const fs::path bin = binary("water_drop");
   TempDir dir;
   const fs::path failed = dir.path() / "failed";
-  const Finished f = run(bin, kTiny + std::vector<std::string>{"--out", failed.string(), "--cleaning", "on",
-                                                               "--inject-nan-at", "0.0015"}, dir.path());
+  const Finished f = run(bin, kTiny + std::vector<std::string>{"--out", failed.string(), "--scheme", "delta-sph",
+                                                               "--cleaning", "on", "--inject-nan-at", "0.0015"}, dir.path());
   ASSERT_EQ(f.exit_code, 3) << f.err;
   const Json rf = read_run_record(failed / "run.json");
   EXPECT_EQ(rf.find("outcome")->as_string(), "failed");
@@ -171,7 +171,7 @@ TEST(ExampleRecord, AFailedAndAStoppedRunSaySoAndWhy) {
   EXPECT_NE(std::find(files.begin(), files.end(), "cleaned/checkpoint.bin"), files.end());  // the last good state
   // SIGINT mid-run (1e5 leapfrog steps: surely mid-run)
   const fs::path stopped = dir.path() / "stopped";
-  const Spawned s = spawn(bin, {"--spacing", "0.2", "--no-render", "--threads", "1", "--cleaning", "on", "--stepper",
+  const Spawned s = spawn(bin, {"--spacing", "0.2", "--no-render", "--threads", "1", "--scheme", "delta-sph", "--cleaning", "on", "--stepper",
                                 "leapfrog", "--dt", "1e-5", "--t-end", "1", "--output-every", "0.01", "--out", stopped.string()},
                           dir.path());
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
