@@ -127,7 +127,9 @@ std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& o
   guard->inject_nan_from(opts.inject_nan_from);
   auto inner = opts.communicator.distributed() ? detail::make_distributed_stepper(*guard, opts, t0, y0)
                                                : detail::make_validated_stepper(*guard, opts, t0, y0);
-  return std::make_unique<detail::WrapperOwningStepper>(std::move(guard), std::move(inner));
+  const GuardedSystem* counter = guard.get();
+  return std::make_unique<detail::WrapperOwningStepper>(std::move(guard), std::move(inner),
+                                                        [counter] { return counter->particle_evals(); });
 }
 
 void Stepper::resize(const Resized&) {
@@ -166,7 +168,11 @@ std::string format_stats(const StepperStats& st) {
   s << " err_test_fails=" << st.error_test_failures;
   if (st.rhs_evals_implicit > 0)
     s << " nonlin_fails=" << st.nonlinear_failures << " lin_solves=" << st.linear_solves;
-  s << " rhs_recoveries=" << st.rhs_recoveries << " last_dt=" << st.last_dt
+  s << " rhs_recoveries=" << st.rhs_recoveries << " particle_evals=" << st.particle_evals;
+  for (std::size_t l = 0; l < st.levels.size(); ++l)
+    s << " level" << l << "=(steps=" << st.levels[l].steps << " rhs_evals=" << st.levels[l].rhs_evals
+      << " particle_evals=" << st.levels[l].particle_evals << ")";
+  s << " last_dt=" << st.last_dt
     << " t=" << st.current_time;
   return s.str();
 }

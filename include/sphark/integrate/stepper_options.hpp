@@ -76,6 +76,13 @@ struct StepperOptions {
   std::vector<ReduceOp> root_reduction;
 };
 
+// One level of a multirate stepper (MRIStep: 0 slow, 1 fast; block steps: 0 the longest step).
+struct LevelStats {
+  long steps = 0;           // steps taken at this level
+  long rhs_evals = 0;       // right-hand-side (subset) evaluations of this level's particles
+  long particle_evals = 0;  // Σ over those evaluations of the particles evaluated
+};
+
 struct StepperStats {
   long steps = 0;                // accepted steps
   long attempts = 0;             // step attempts (accepted + rejected + retried)
@@ -85,6 +92,10 @@ struct StepperStats {
   long nonlinear_failures = 0;   // nonlinear solver convergence failures (IMEX only)
   long rhs_recoveries = 0;       // restarts with a smaller step after a recoverable RHS failure
   long linear_solves = 0;        // custom diagonal linear solves (IMEX only)
+  // Σ over RHS calls of the particles whose derivatives were computed (OdeSystem::num_particles()
+  // per full RHS call, the active set per subset call): the unit of work of issue #17.
+  long particle_evals = 0;
+  std::vector<LevelStats> levels;  // multirate steppers only (empty for global steppers)
   Real last_dt = 0;              // size of the last step taken
   Real current_time = 0;         // time reached by the stepper
 };
