@@ -69,6 +69,22 @@ void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, cons
           "needs fixed_dt, max_dt or a finite system max_stable_dt" + why);
 }
 
+// method "mri-<table>" (multirate, issue #17): the options MRIStep of SUNDIALS 6.4.1 needs.
+void validate_mri(const OdeSystem& system, const StepperOptions& o) {
+  const std::string table = o.method.substr(4);
+  require(o, mri_table_order(table) > 0, "method", o.method,
+          "unknown MRI coupling table (mri-ARKODE_MIS_KW3, mri-ARKODE_MRI_GARK_ERK33a, mri-ARKODE_MRI_GARK_ERK45a)");
+  require(o, o.fixed_dt > 0, "method", o.method,
+          "MRIStep of SUNDIALS 6.4.1 takes fixed slow steps: set fixed_dt");
+  require(o, o.mri_ratio >= 1, "mri_ratio", std::to_string(o.mri_ratio), "must be >= 1");
+  require(o, is_erk(o.mri_fast_table), "mri_fast_table", o.mri_fast_table, "not an ERK table of SUNDIALS 6.4.1");
+  require(o, o.partition_hysteresis >= 0, "partition_hysteresis", number_text(o.partition_hysteresis), "must be >= 0");
+  require(o, system.supports_subsets(), "method", o.method,
+          "the system cannot evaluate particle subsets (OdeSystem::supports_subsets)");
+  require(o, system.num_roots() == 0, "method", o.method, "root finding is not supported by the multirate stepper");
+  require(o, !o.communicator.distributed(), "method", o.method, "the multirate stepper is serial only");
+}
+
 }  // namespace
 
 // ARKODE 6.4.1 enum order (arkode/arkode_butcher_erk.h); names accepted by ERKStepSetTableName.
@@ -104,6 +120,10 @@ std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const Stepper
     validate_leapfrog(system, opts, t0, y0);
     return make_leapfrog_stepper(system, opts, t0, y0);
   }
+  if (opts.method.rfind("mri-", 0) == 0) {
+    validate_mri(system, opts);
+    return make_mri_stepper(system, opts, t0, y0);
+  }
   if (opts.method == "ark-imex") {
     require(opts, system.has_stiff_diagonal(), "method", opts.method,
             "the system has no stiff diagonal part (use an ERK table)");
@@ -112,7 +132,7 @@ std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const Stepper
     return make_imex_stepper(system, opts, t0, y0);
   }
   require(opts, is_erk(opts.method), "method", opts.method,
-          "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
+          "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\", \"leapfrog-rev\" or \"mri-<table>\"");
   require(opts, opts.fixed_dt > 0 || erk_table_has_embedding(opts.method), "method", opts.method,
           "table has no embedding: adaptive steps impossible, set fixed_dt");
   return make_erk_stepper(system, opts, t0, y0);
@@ -143,6 +163,11 @@ std::string describe(const StepperOptions& o) {
     if (o.fixed_dt > 0) s << "fixed dt=" << o.fixed_dt;
     else s << "dt=" << o.cfl_safety << " x max_stable_dt";
     if (o.fixed_dt <= 0 && o.max_dt > 0) s << ", max_dt=" << o.max_dt;
+    return s.str();
+  }
+  if (o.method.rfind("mri-", 0) == 0) {
+    s << "MRIStep " << o.method.substr(4) << ", slow dt=" << o.fixed_dt << ", fast " << o.mri_fast_table
+      << " dt=slow/" << o.mri_ratio << ", hysteresis " << o.partition_hysteresis << ", max_steps=" << o.max_steps;
     return s.str();
   }
   if (o.method == "ark-imex") s << "ARKStep IMEX " << o.imex_table;

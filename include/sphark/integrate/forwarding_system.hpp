@@ -28,7 +28,9 @@ class ForwardingSystem : public OdeSystem {
   int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
     return inner_.rhs_subset(t, y, active, ydot);
   }
-  int particle_stable_dt(Real t, const Real* y, Real* dt) override { return inner_.particle_stable_dt(t, y, dt); }
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
+    return inner_.particle_stable_dt(t, y, ydot, dt);
+  }
 
  protected:
   OdeSystem& inner_;

@@ -86,10 +86,11 @@ class OdeSystem {
                          Real* /*ydot*/) {
     throw std::logic_error("rhs_subset: this system cannot evaluate a subset of its particles");
   }
-  // Each particle's own largest stable step at (t, y) (num_particles() entries in dt), the
-  // per-particle analogue of max_stable_dt (+inf: no limit). 0 success, non-zero failure
-  // (last_error() says why). Default: throws std::logic_error (not supported).
-  virtual int particle_stable_dt(Real /*t*/, const Real* /*y*/, Real* /*dt*/) {
+  // Each particle's own largest stable step at (t, y) (num_particles() entries in dt): the
+  // per-particle analogue of max_stable_dt, with the same ydot convention (f(t, y) or the
+  // stepper's approximation of it, or null: derived from y); +inf: no limit. 0 success,
+  // non-zero failure (last_error() says why). Default: throws std::logic_error (not supported).
+  virtual int particle_stable_dt(Real /*t*/, const Real* /*y*/, const Real* /*ydot*/, Real* /*dt*/) {
     throw std::logic_error("particle_stable_dt: this system reports no per-particle stable steps");
   }
 };

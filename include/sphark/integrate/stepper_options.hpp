@@ -13,7 +13,8 @@ namespace sphark {
 inline constexpr int kStepsBelowFloor = 100;
 
 struct StepperOptions {
-  // Any explicit Butcher table of SUNDIALS 6.4.1 (see erk_table_names()), "ark-imex" or "leapfrog".
+  // Any explicit Butcher table of SUNDIALS 6.4.1 (see erk_table_names()), "ark-imex", "leapfrog"
+  // or "mri-<MRI coupling table>" (multirate, see mri_table_names() in stepper.hpp).
   std::string method = "ARKODE_DORMAND_PRINCE_7_4_5";
   Real rtol = 1e-6;
   // Absolute tolerance: one value per state entry, or a single value for all; empty -> 1e-9.
@@ -58,6 +59,15 @@ struct StepperOptions {
   // ARK IMEX pair of ARKODE 6.4.1: ARK324L2SA (order 3), ARK436L2SA (4), ARK437L2SA (4),
   // ARK548L2SA (5), ARK548L2SAb (5).
   std::string imex_table = "ARK436L2SA";
+  // Multirate (issue #17), method "mri-<coupling table>" (mri_table_names()): the slow step is
+  // fixed_dt (MRIStep of SUNDIALS 6.4.1 has fixed slow steps), the fast step fixed_dt / mri_ratio
+  // with the explicit table mri_fast_table (any ERK table, see erk_table_names()). Particles
+  // whose stable step (x cfl_safety) is below fixed_dt are fast; they return to the slow set
+  // when it exceeds fixed_dt by the factor (1 + partition_hysteresis). Repartitioned before
+  // every slow step.
+  int mri_ratio = 4;
+  std::string mri_fast_table = "ARKODE_ZONNEVELD_5_3_4";
+  Real partition_hysteresis = 0.25;
   // Distributed run: the ranks that each hold a part of the state (system.size() is then the
   // local length, every rank passes the same options). ARKODE runs on SUNDIALS' parallel
   // vectors (global norms), and the system's return codes, max_stable_dt (min), root functions
