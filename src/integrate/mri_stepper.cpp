@@ -116,6 +116,8 @@ void MriStepper::create(Real t0) {
   if (ARKStepSetTableName(fast, "ARKODE_DIRK_NONE", opts_.mri_fast_table.c_str()) < 0)
     throw std::invalid_argument("mri_fast_table=" + opts_.mri_fast_table + ": ARKStepSetTableName rejected it");
   check(ARKStepSetFixedStep(fast, h_fast_), "ARKStepSetFixedStep");
+  // Lagrange: the default Hermite interpolant costs one more f_fast evaluation per fast step.
+  check(ARKStepSetInterpolantType(fast, ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType");
   check(ARKStepSetMaxNumSteps(fast, opts_.max_steps), "ARKStepSetMaxNumSteps");
   MRIStepInnerStepper inner = nullptr;
   check(ARKStepCreateMRIStepInnerStepper(fast, &inner), "ARKStepCreateMRIStepInnerStepper");

@@ -41,8 +41,9 @@ class OscillatorEnsemble : public OdeSystem {
     }
     return 0;
   }
-  int rhs_subset(Real, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
+  int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
     ++subset_calls;
+    if (record_calls) calls.push_back({t, std::vector<std::size_t>(active.begin(), active.end())});
     std::fill(ydot, ydot + size(), 0.0);
     for (std::size_t i : active) {
       ydot[i] = y[n() + i];
@@ -93,6 +94,12 @@ class OscillatorEnsemble : public OdeSystem {
   }
 
   long full_calls = 0, subset_calls = 0;
+  struct Call {
+    Real t;
+    std::vector<std::size_t> active;
+  };
+  bool record_calls = false;
+  std::vector<Call> calls;  // every rhs_subset call when record_calls
 
  private:
   std::vector<Real> w_;
