@@ -36,15 +36,17 @@ int LevelPartition::needed_level(Real dt) const {
   return l;
 }
 
+int LevelPartition::next_level(int current, Real dt) const {
+  const int need = needed_level(dt);
+  return need < current ? std::min(current, needed_level(dt / (1 + hysteresis_))) : need;
+}
+
 bool LevelPartition::update(std::span<const Real> dt) {
   const bool fresh = levels_.size() != dt.size();
   if (fresh) levels_.assign(dt.size(), 0);
   bool changed = fresh;
   for (std::size_t i = 0; i < dt.size(); ++i) {
-    const int need = needed_level(dt[i]);
-    int next = need;
-    if (!fresh && need < levels_[i])  // may move up only with the margin (1 + hysteresis)
-      next = std::min(levels_[i], needed_level(dt[i] / (1 + hysteresis_)));
+    const int next = fresh ? needed_level(dt[i]) : next_level(levels_[i], dt[i]);
     changed = changed || next != levels_[i];
     levels_[i] = next;
   }

@@ -85,6 +85,21 @@ void validate_mri(const OdeSystem& system, const StepperOptions& o) {
   require(o, !o.communicator.distributed(), "method", o.method, "the multirate stepper is serial only");
 }
 
+// "leapfrog-blocks" (issue #17): a position block, a top step, the subset interface.
+void validate_blocks(const OdeSystem& system, const StepperOptions& o) {
+  const std::size_t n = system.size(), np = system.position_size();
+  const std::size_t xp = system.position_offset(), vp = system.velocity_offset();
+  require(o, np > 0, "method", o.method, "the system declares no position block (position_size() == 0)");
+  require(o, !(xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np)), "method", o.method,
+          "position/velocity blocks overlap or exceed the state size");
+  require(o, o.fixed_dt > 0 || o.max_dt > 0, "method", o.method, "needs the top step: set fixed_dt or max_dt");
+  require(o, o.partition_hysteresis >= 0, "partition_hysteresis", number_text(o.partition_hysteresis), "must be >= 0");
+  require(o, system.supports_subsets(), "method", o.method,
+          "the system cannot evaluate particle subsets (OdeSystem::supports_subsets)");
+  require(o, system.num_roots() == 0, "method", o.method, "root finding is not supported with block steps");
+  require(o, !o.communicator.distributed(), "method", o.method, "block steps are serial only");
+}
+
 }  // namespace
 
 // ARKODE 6.4.1 enum order (arkode/arkode_butcher_erk.h); names accepted by ERKStepSetTableName.
@@ -120,6 +135,10 @@ std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const Stepper
     validate_leapfrog(system, opts, t0, y0);
     return make_leapfrog_stepper(system, opts, t0, y0);
   }
+  if (opts.method == "leapfrog-blocks") {
+    validate_blocks(system, opts);
+    return make_block_leapfrog_stepper(system, opts, t0, y0);
+  }
   if (opts.method.rfind("mri-", 0) == 0) {
     validate_mri(system, opts);
     return make_mri_stepper(system, opts, t0, y0);
@@ -132,7 +151,7 @@ std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const Stepper
     return make_imex_stepper(system, opts, t0, y0);
   }
   require(opts, is_erk(opts.method), "method", opts.method,
-          "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\", \"leapfrog-rev\" or \"mri-<table>\"");
+          "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\", \"leapfrog-rev\", \"leapfrog-blocks\" or \"mri-<table>\"");
   require(opts, opts.fixed_dt > 0 || erk_table_has_embedding(opts.method), "method", opts.method,
           "table has no embedding: adaptive steps impossible, set fixed_dt");
   return make_erk_stepper(system, opts, t0, y0);
@@ -163,6 +182,11 @@ std::string describe(const StepperOptions& o) {
     if (o.fixed_dt > 0) s << "fixed dt=" << o.fixed_dt;
     else s << "dt=" << o.cfl_safety << " x max_stable_dt";
     if (o.fixed_dt <= 0 && o.max_dt > 0) s << ", max_dt=" << o.max_dt;
+    return s.str();
+  }
+  if (o.method == "leapfrog-blocks") {
+    s << "leapfrog KDK with power-of-two block steps, top dt=" << (o.fixed_dt > 0 ? o.fixed_dt : o.max_dt)
+      << ", levels from " << o.cfl_safety << " x particle_stable_dt, hysteresis " << o.partition_hysteresis;
     return s.str();
   }
   if (o.method.rfind("mri-", 0) == 0) {

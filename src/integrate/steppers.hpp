@@ -19,6 +19,10 @@ bool is_imex_pair(const std::string& name);
 std::unique_ptr<Stepper> make_mri_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                           const Real* y0);
 
+// "leapfrog-blocks": KDK with individual power-of-two block steps (block_leapfrog_stepper.cpp).
+std::unique_ptr<Stepper> make_block_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                                     const Real* y0);
+
 std::unique_ptr<Stepper> make_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts,
                                                Real t0, const Real* y0);
 

@@ -1,5 +1,6 @@
 #include "sphark/run/time_loop.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -146,7 +147,14 @@ void TimeLoop::restore(const Checkpoint& c) {
   if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
   y_ = c.y;
   t_ = c.t;
-  for (auto& [name, ptr] : binds_) *ptr = c.scalar(name);
+  for (auto& [name, ptr] : binds_) {
+    // particle_evals (issue #17) is newer than the other counts: a checkpoint without it counts
+    // from the restart on.
+    const bool optional = name == "particle_evals";
+    const bool present = !optional || std::any_of(c.scalars.begin(), c.scalars.end(),
+                                                  [&](const auto& s) { return s.first == name; });
+    *ptr = present ? c.scalar(name) : 0;
+  }
   // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
   // new grid from the checkpoint time on.
   if (c.scalar("sample_every") != s_.sample_every || !(sample_ * s_.sample_every > t_))  // (the latter: a corrupt index)

@@ -27,6 +27,11 @@ class OscillatorEnsemble : public OdeSystem {
   std::size_t velocity_offset() const override { return n(); }
   std::size_t position_size() const override { return n(); }
   bool supports_subsets() const override { return true; }
+  std::vector<std::size_t> entry_particles() const override {
+    std::vector<std::size_t> owner(size());
+    for (std::size_t k = 0; k < size(); ++k) owner[k] = k % n();
+    return owner;
+  }
 
   Real acceleration(std::size_t i, const Real* y) const {
     Real a = -w_[i] * w_[i] * y[i];

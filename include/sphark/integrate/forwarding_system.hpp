@@ -24,6 +24,7 @@ class ForwardingSystem : public OdeSystem {
   int roots(Real t, const Real* y, Real* g) override { return inner_.roots(t, y, g); }
   std::string last_error() const override { return inner_.last_error(); }
   std::size_t num_particles() const override { return inner_.num_particles(); }
+  std::vector<std::size_t> entry_particles() const override { return inner_.entry_particles(); }
   bool supports_subsets() const override { return inner_.supports_subsets(); }
   int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
     return inner_.rhs_subset(t, y, active, ydot);

@@ -22,6 +22,9 @@ class LevelPartition {
   // The level each particle needs for its stable step dt[i] (> 0, +inf allowed), without
   // hysteresis; throws std::invalid_argument for a non-positive or NaN step.
   int needed_level(Real dt) const;
+  // The level of a particle now at level `current` whose stable step is dt: deeper at once,
+  // shallower only with the margin (1 + hysteresis) (the rule update() applies to each).
+  int next_level(int current, Real dt) const;
   // Bins the particles by their stable steps (dt.size() particles; a change of the particle
   // count starts afresh, without hysteresis). Returns true if any particle's level changed.
   bool update(std::span<const Real> dt);

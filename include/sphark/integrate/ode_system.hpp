@@ -20,6 +20,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sphark/core/types.hpp"
 
@@ -73,6 +74,11 @@ class OdeSystem {
   // Particles are numbered 0 .. num_particles()-1, species after species in layout order.
   // Default: every particle of the layout; a plain ODE without a layout is one particle.
   virtual std::size_t num_particles() const;
+
+  // The particle owning each state entry (size() entries), for steppers that advance particles
+  // by steps of their own (block steps). Default: from the layout (species after species); a
+  // plain ODE's entries all belong to its one particle.
+  virtual std::vector<std::size_t> entry_particles() const;
 
   // Multirate (issue #17): true if rhs_subset() and particle_stable_dt() are implemented.
   virtual bool supports_subsets() const { return false; }

@@ -1,0 +1,186 @@
+// "leapfrog-blocks": Phantom-style power-of-two block steps on the KDK leapfrog (issue #17).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <stdexcept>
+
+#include "oscillator_ensemble.hpp"
+#include "sphark/integrate/stepper.hpp"
+
+namespace sphark::test {
+namespace {
+
+OscillatorEnsemble ensemble() { return OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3); }
+
+std::vector<Real> initial_state(const OscillatorEnsemble& sys) {
+  std::vector<Real> y(sys.size());
+  for (std::size_t i = 0; i < sys.n(); ++i) y[i] = std::cos(1.0 + i), y[sys.n() + i] = std::sin(2.0 * i);
+  return sys.project_below(y, 10);  // the slow manifold (see mri_order_test.cpp)
+}
+
+Real max_error(const std::vector<Real>& a, const std::vector<Real>& b) {
+  Real e = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) e = std::max(e, std::abs(a[k] - b[k]));
+  return e;
+}
+
+// Top step h; cfl_safety = 1.5 h puts the slow oscillators (stable step 1) on level 0 and the
+// fast ones (1/100) on level 7 (h / 128) for every h, so that all steps halve with h.
+StepperOptions blocks(Real h) {
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  o.fixed_dt = h;
+  o.cfl_safety = 1.5 * h;
+  return o;
+}
+
+TEST(BlockSteps, SecondOrderOnTheOscillatorEnsemble) {
+  std::vector<Real> e;
+  for (int k = 0; k < 4; ++k) {
+    const Real h = 0.1 / (1 << k);
+    OscillatorEnsemble sys = ensemble();
+    const std::vector<Real> y0 = initial_state(sys);
+    auto stepper = make_stepper(sys, blocks(h), 0, y0.data());
+    std::vector<Real> y(y0.size());
+    Real t = 0;
+    ASSERT_EQ(stepper->advance(1.0, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    ASSERT_EQ(t, 1.0);
+    e.push_back(max_error(y, sys.exact(y0, 1.0)));
+    const StepperStats s = stepper->stats();
+    const long cycles = std::lround(1.0 / h);
+    ASSERT_EQ(s.levels.size(), 8u);
+    for (int l = 1; l < 7; ++l) EXPECT_EQ(s.levels[l].particle_evals, 0) << "level " << l;
+    EXPECT_EQ(s.levels[0].rhs_evals, cycles);        // once per top step
+    EXPECT_EQ(s.levels[7].rhs_evals, 128 * cycles);  // every h / 128
+    EXPECT_EQ(s.levels[0].particle_evals, 6 * cycles);
+    EXPECT_EQ(s.levels[7].particle_evals, 2 * 128 * cycles);
+    EXPECT_EQ(s.rhs_evals, 1 + 128 * cycles);  // the initial full RHS, one call per event
+    EXPECT_EQ(s.particle_evals, 8 + s.levels[0].particle_evals + s.levels[7].particle_evals);
+    std::printf("h=%g: error %.3e, particle evals %ld (global leapfrog at h/128: %ld)\n", h, e.back(),
+                s.particle_evals, 8 * (1 + 128 * cycles));
+  }
+  for (std::size_t k = 1; k < e.size(); ++k) {
+    const Real order = std::log2(e[k - 1] / e[k]);
+    std::printf("order %.3f\n", order);
+    EXPECT_GE(order, 2 - 0.3) << "halving " << k;
+  }
+}
+
+// Pairwise antisymmetric springs a_i = sum_j s_i s_j (x_j - x_i) (unit masses): total momentum
+// sum_i v_i is invariant; particles 6 and 7 (s = 10) are stiff.
+class PairSprings : public OscillatorEnsemble {
+ public:
+  PairSprings() : OscillatorEnsemble(std::vector<Real>(8, 0.0), 0.0) {}
+  Real k(std::size_t i, std::size_t j) const { return s_[i] * s_[j]; }
+  Real pair_acceleration(std::size_t i, const Real* y) const {
+    Real a = 0;
+    for (std::size_t j = 0; j < n(); ++j) a += k(i, j) * (y[j] - y[i]);
+    return a;
+  }
+  int rhs(Real, const Real* y, Real* ydot) override {
+    for (std::size_t i = 0; i < n(); ++i) ydot[i] = y[n() + i], ydot[n() + i] = pair_acceleration(i, y);
+    return 0;
+  }
+  int rhs_subset(Real, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
+    std::fill(ydot, ydot + size(), 0.0);
+    for (std::size_t i : active) ydot[i] = y[n() + i], ydot[n() + i] = pair_acceleration(i, y);
+    return 0;
+  }
+  int particle_stable_dt(Real, const Real*, const Real*, Real* dt) override {
+    for (std::size_t i = 0; i < n(); ++i) {
+      Real sum = 0;
+      for (std::size_t j = 0; j < n(); ++j) sum += j == i ? 0 : k(i, j);
+      dt[i] = 1 / std::sqrt(sum);
+    }
+    return 0;
+  }
+  static Real momentum(const std::vector<Real>& y) { return std::accumulate(y.begin() + 8, y.end(), 0.0); }
+
+ private:
+  const Real s_[8] = {1, 1, 1, 1, 1, 1, 10, 10};
+};
+
+std::vector<Real> spring_state() {
+  std::vector<Real> y(16);
+  for (int i = 0; i < 8; ++i) y[i] = 0.3 * std::sin(1.0 + i), y[8 + i] = 0.2 * std::cos(3.0 * i);
+  return y;
+}
+
+// Momentum drift |P(10) - P(0)| with top step h and levels from cfl_safety.
+Real momentum_drift(Real h, Real cfl, std::size_t* levels) {
+  PairSprings sys;
+  const std::vector<Real> y0 = spring_state();
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  o.fixed_dt = h;
+  o.cfl_safety = cfl;
+  auto stepper = make_stepper(sys, o, 0, y0.data());
+  std::vector<Real> y(y0.size());
+  Real t = 0;
+  EXPECT_EQ(stepper->advance(10.0, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+  *levels = stepper->stats().levels.size();
+  return std::abs(PairSprings::momentum(y) - PairSprings::momentum(y0));
+}
+
+TEST(BlockSteps, MomentumToRoundOffOnOneLevel) {
+  std::size_t levels = 0;
+  // Stable steps 1/sqrt(25) (soft) and 1/sqrt(160) (stiff): all above h = 0.005.
+  const Real drift = momentum_drift(0.005, 1.0, &levels);
+  std::printf("one level: momentum drift %.3e\n", drift);
+  EXPECT_EQ(levels, 1u);
+  EXPECT_LE(drift, 1e-14);
+}
+
+// Across levels a pair force is sampled at different times for its two particles: momentum is
+// conserved to the time-stepping error only (block_leapfrog_stepper.cpp); measured here.
+TEST(BlockSteps, MomentumAcrossLevelsFallsWithTheStep) {
+  std::vector<Real> d;
+  for (int k = 0; k < 4; ++k) {
+    const Real h = 0.05 / (1 << k);
+    std::size_t levels = 0;
+    d.push_back(momentum_drift(h, 0.3 * h / 0.05, &levels));
+    std::printf("h=%g: %zu levels, momentum drift %.3e\n", h, levels, d.back());
+    EXPECT_GT(levels, 1u);
+  }
+  for (std::size_t k = 1; k < d.size(); ++k) {
+    const Real order = std::log2(d[k - 1] / d[k]);
+    std::printf("momentum drift order %.3f\n", order);
+    EXPECT_GE(order, 2 - 0.3) << "halving " << k;
+  }
+}
+
+TEST(BlockSteps, OneLevelIsTheGlobalLeapfrog) {
+  PairSprings a_sys, b_sys;
+  const std::vector<Real> y0 = spring_state();
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  o.fixed_dt = 0.005;
+  auto a = make_stepper(a_sys, o, 0, y0.data());
+  o.method = "leapfrog";
+  auto b = make_stepper(b_sys, o, 0, y0.data());
+  std::vector<Real> ya(16), yb(16);
+  Real ta = 0, tb = 0;
+  ASSERT_EQ(a->advance(2.0, ya.data(), ta), AdvanceStatus::Reached);
+  ASSERT_EQ(b->advance(2.0, yb.data(), tb), AdvanceStatus::Reached);
+  std::printf("one level vs leapfrog: max difference %.3e\n", max_error(ya, yb));
+  EXPECT_LE(max_error(ya, yb), 1e-13);
+  EXPECT_EQ(a->stats().particle_evals, b->stats().particle_evals);
+}
+
+TEST(BlockSteps, BadOptionsAreOneLineInvalidArguments) {
+  OscillatorEnsemble sys = ensemble();
+  const std::vector<Real> y0 = initial_state(sys);
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  try {
+    make_stepper(sys, o, 0, y0.data());
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("set fixed_dt or max_dt"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace sphark::test
