@@ -54,6 +54,9 @@ class BlockLeapfrogStepper final : public Stepper {
   StepperStats stats() const override;
   std::string failure_reason() const override { return failure_; }
   std::vector<int> roots_found() const override { return {}; }
+  // The derivative of the next kicks (FSAL), each particle's level, and whether the next cycle
+  // bins afresh: a restart at (t, y) with them takes this run's steps bit for bit.
+  std::vector<Real> resume_data() const override;
 
  private:
   std::int64_t length(int level) const { return kTicks >> level; }
@@ -97,8 +100,29 @@ BlockLeapfrogStepper::BlockLeapfrogStepper(OdeSystem& system, const StepperOptio
   for (std::size_t i = 0; i < entries_.size(); ++i)  // e.g. num_particles() overridden, entry_particles() not
     if (entries_[i].empty())
       throw std::logic_error("entry_particles: particle " + std::to_string(i) + " owns no kicked state entry");
+  const std::vector<Real>& r = opts.resume_data;
+  if (!r.empty()) {  // a restart: the derivative and levels of the run being continued
+    if (r.size() != n_ + level_.size() + 1)
+      throw std::invalid_argument("resume_data: " + std::to_string(r.size()) + " values, expected " +
+                                  std::to_string(n_ + level_.size() + 1));
+    std::copy(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(n_), dy_.begin());
+    std::vector<int> levels(r.begin() + static_cast<std::ptrdiff_t>(n_), r.end() - 1);
+    bins_.set_levels(levels);  // checks the range
+    level_ = std::move(levels);
+    fresh_ = r.back() != 0;
+    rhs_evals_ = 0;
+    return;
+  }
   const int code = system_.rhs(t_, y_.data(), dy_.data());
   if (code != 0) throw std::runtime_error("leapfrog-blocks: initial rhs failed: " + system_.last_error());
+}
+
+std::vector<Real> BlockLeapfrogStepper::resume_data() const {
+  if (failed_) return {};
+  std::vector<Real> r = dy_;
+  r.insert(r.end(), level_.begin(), level_.end());
+  r.push_back(bins_.dt_top() != top_ ? 1 : 0);  // after a shortened landing step: bin afresh
+  return r;
 }
 
 void BlockLeapfrogStepper::kick(const std::vector<std::size_t>& particles, Real factor, std::vector<Real>& w) const {

@@ -53,6 +53,12 @@ bool LevelPartition::update(std::span<const Real> dt) {
   return changed;
 }
 
+void LevelPartition::set_levels(std::vector<int> levels) {
+  for (int l : levels)
+    if (l < 0 || l > max_level_) throw std::invalid_argument("partition level=" + std::to_string(l) + ": outside 0.." + std::to_string(max_level_));
+  levels_ = std::move(levels);
+}
+
 int LevelPartition::deepest() const {
   return levels_.empty() ? 0 : *std::max_element(levels_.begin(), levels_.end());
 }

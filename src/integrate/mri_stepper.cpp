@@ -56,6 +56,11 @@ class MriStepper final : public Stepper {
   StepperStats stats() const override;
   std::string failure_reason() const override { return failure_; }
   std::vector<int> roots_found() const override { return {}; }
+  // The partition (each particle's level), so that a restart at (t, y) bins exactly as this
+  // run would have: with it, the restart takes this run's steps bit for bit.
+  std::vector<Real> resume_data() const override {
+    return std::vector<Real>(partition_.levels().begin(), partition_.levels().end());
+  }
 
  private:
   void create(Real t0);
@@ -80,6 +85,7 @@ class MriStepper final : public Stepper {
   std::vector<Real> stable_dt_;
   LevelStats level_stats_[2];
   long repartitions_ = 0;  // partitions that changed a set
+  bool sets_valid_ = false;  // sets_ follow partition_ (false until the first repartition)
   ArkMemPtr fast_mem_;     // destroyed last: the inner stepper and MRIStep refer to it
   InnerStepperPtr inner_;
   MriMemPtr mem_;
@@ -95,6 +101,12 @@ MriStepper::MriStepper(OdeSystem& system, const StepperOptions& opts, Real t0, c
       y_(y0, y0 + system.size()),
       t_(t0),
       partition_(opts.fixed_dt, 1, opts.partition_hysteresis) {
+  if (!opts.resume_data.empty()) {  // a restart: the partition of the run being continued
+    if (opts.resume_data.size() != system.num_particles())
+      throw std::invalid_argument("resume_data: " + std::to_string(opts.resume_data.size()) + " levels for " +
+                                  std::to_string(system.num_particles()) + " particles");
+    partition_.set_levels(std::vector<int>(opts.resume_data.begin(), opts.resume_data.end()));
+  }
   repartition(t0, y0);
   create(t0);
 }
@@ -153,7 +165,8 @@ void MriStepper::repartition(Real t, const Real* y) {
     throw std::runtime_error("particle " + std::to_string(worst) + " has the stable step " + at_time(stable_dt_[worst]) +
                              " < fast step fixed_dt/mri_ratio=" + at_time(h_fast_) + " at t=" + at_time(t) +
                              ": raise mri_ratio");
-  if (!partition_.update(stable_dt_)) return;
+  if (!partition_.update(stable_dt_) && sets_valid_) return;
+  sets_valid_ = true;
   sets_[kSlow] = partition_.at(0);
   sets_[kFast] = partition_.at_least(1);
   ++repartitions_;

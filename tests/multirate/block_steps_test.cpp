@@ -7,6 +7,7 @@
 
 #include "oscillator_ensemble.hpp"
 #include "pair_springs.hpp"
+#include "switching_ensemble.hpp"
 #include "sphark/integrate/stepper.hpp"
 
 namespace sphark::test {
@@ -127,6 +128,38 @@ TEST(BlockSteps, OneLevelIsTheGlobalLeapfrog) {
   std::printf("one level vs leapfrog: max difference %.3e\n", max_error(ya, yb));
   EXPECT_LE(max_error(ya, yb), 1e-13);
   EXPECT_EQ(a->stats().particle_evals, b->stats().particle_evals);
+}
+
+// A restart at (t1, y(t1)) with resume_data (the FSAL derivative and the levels) continues bit
+// for bit; particle 0 is held on a deep level by the hysteresis, which binning afresh loses.
+TEST(BlockSteps, ARestartCarriesTheLevelsAndTheDerivative) {
+  const Real h = 0.05, t1 = 0.7, t2 = 1.0;
+  // Advances to each of t_outs in turn (a time loop with an output at t1).
+  auto run = [&](Real t0, const std::vector<Real>& y0, const std::vector<Real>& resume, std::vector<Real> t_outs,
+                 std::vector<Real>* resume_out) {
+    HystereticEnsemble sys(0.2, 0.4, 1.1 * h / 4);  // after 0.4: 1.1 x the level-2 step
+    StepperOptions o = blocks(h);
+    o.cfl_safety = 1;
+    o.resume_data = resume;
+    auto stepper = make_stepper(sys, o, t0, y0.data());
+    std::vector<Real> y(y0.size());
+    Real t = t0;
+    for (Real t_end : t_outs)
+      EXPECT_EQ(stepper->advance(t_end, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    if (resume_out) *resume_out = stepper->resume_data();
+    return y;
+  };
+  OscillatorEnsemble sys = ensemble();
+  const std::vector<Real> y0 = initial_state(sys);
+  std::vector<Real> resume;
+  const std::vector<Real> y1 = run(0, y0, {}, {t1}, &resume);
+  ASSERT_EQ(resume.size(), 16u + 8u + 1u);
+  EXPECT_EQ(resume[16], 3);  // particle 0: held on level 3 (h/8 = 0.00625 <= 0.01), not level 2
+  const std::vector<Real> y_continued = run(0, y0, {}, {t1, t2}, nullptr);
+  const std::vector<Real> y_restarted = run(t1, y1, resume, {t2}, nullptr);
+  const std::vector<Real> y_fresh = run(t1, y1, {}, {t2}, nullptr);
+  for (std::size_t k = 0; k < y0.size(); ++k) EXPECT_EQ(y_restarted[k], y_continued[k]) << "entry " << k;
+  EXPECT_NE(y_fresh, y_continued);
 }
 
 TEST(BlockSteps, BadOptionsAreOneLineInvalidArguments) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "oscillator_ensemble.hpp"
+#include "switching_ensemble.hpp"
 #include "sphark/integrate/stepper.hpp"
 
 namespace sphark::test {
@@ -128,22 +129,6 @@ TEST(MriBookkeeping, APlainOdeIsOneParticle) {
   EXPECT_NE(format_stats(stepper->stats()).find("particle_evals="), std::string::npos);
 }
 
-// Particle 0 reports a fast stable step from t_switch on: its dynamics is unchanged, only the
-// partition moves it into the fast set.
-class SwitchingEnsemble : public OscillatorEnsemble {
- public:
-  explicit SwitchingEnsemble(Real t_switch)
-      : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_switch_(t_switch) {}
-  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
-    OscillatorEnsemble::particle_stable_dt(t, y, ydot, dt);
-    if (t >= t_switch_) dt[0] = 0.01;
-    return 0;
-  }
-
- private:
-  Real t_switch_;
-};
-
 // Particle 0 reports a fast stable step from t = 0.48 on: it joins the fast set at the end of
 // the slow step landing on 0.5; calls before 0.5 see the old sets, calls after it the new ones.
 TEST(MriBookkeeping, ARepartitionKeepsTheStateBitForBit) {
@@ -174,6 +159,36 @@ TEST(MriBookkeeping, ARepartitionKeepsTheStateBitForBit) {
   auto b = make_stepper(b_sys, mri(), t1, y1.data());
   ASSERT_EQ(b->advance(t2, yb.data(), t), AdvanceStatus::Reached);
   for (std::size_t k = 0; k < ya.size(); ++k) EXPECT_EQ(ya[k], yb[k]) << "entry " << k;
+}
+
+// A restart at (t1, y(t1)) with the stepper's resume_data (its partition) takes the continued
+// run's steps bit for bit; binned afresh it would not (particle 0 is held on the fast level
+// by the hysteresis: stable step 1.1 h after being fast).
+TEST(MriBookkeeping, ARestartCarriesThePartition) {
+  const Real h = 0.05, t1 = 0.7, t2 = 1.0;
+  // Advances to each of t_outs in turn (a time loop with an output at t1).
+  auto run = [&](Real t0, const std::vector<Real>& y0, const std::vector<Real>& resume, std::vector<Real> t_outs,
+                 std::vector<Real>* resume_out) {
+    HystereticEnsemble sys(0.2, 0.4, 1.1 * h);
+    StepperOptions o = mri(h);
+    o.resume_data = resume;
+    auto stepper = make_stepper(sys, o, t0, y0.data());
+    std::vector<Real> y(y0.size());
+    Real t = t0;
+    for (Real t_end : t_outs) EXPECT_EQ(stepper->advance(t_end, y.data(), t), AdvanceStatus::Reached);
+    if (resume_out) *resume_out = stepper->resume_data();
+    return y;
+  };
+  const std::vector<Real> y0 = initial_state(8);
+  std::vector<Real> resume;
+  const std::vector<Real> y1 = run(0, y0, {}, {t1}, &resume);
+  ASSERT_EQ(resume.size(), 8u);
+  EXPECT_EQ(resume[0], 1);  // held fast by the hysteresis
+  const std::vector<Real> y_continued = run(0, y0, {}, {t1, t2}, nullptr);
+  const std::vector<Real> y_restarted = run(t1, y1, resume, {t2}, nullptr);
+  const std::vector<Real> y_fresh = run(t1, y1, {}, {t2}, nullptr);
+  for (std::size_t k = 0; k < y0.size(); ++k) EXPECT_EQ(y_restarted[k], y_continued[k]) << "entry " << k;
+  EXPECT_NE(y_fresh, y_continued);  // the test can tell: without the partition the steps differ
 }
 
 TEST(MriBookkeeping, BadOptionsAreOneLineInvalidArguments) {

@@ -29,6 +29,10 @@ class LevelPartition {
   // count starts afresh, without hysteresis). Returns true if any particle's level changed.
   bool update(std::span<const Real> dt);
 
+  // Restores the levels of a previous partition (a restart: Stepper::resume_data); throws
+  // std::invalid_argument for a level outside 0..max_level.
+  void set_levels(std::vector<int> levels);
+
   int level(std::size_t i) const { return levels_[i]; }
   const std::vector<int>& levels() const { return levels_; }
   std::size_t size() const { return levels_.size(); }
