@@ -57,8 +57,14 @@ class BlockLeapfrogStepper final : public Stepper {
   // The derivative of the next kicks (FSAL), each particle's level, and whether the next cycle
   // bins afresh: a restart at (t, y) with them takes this run's steps bit for bit.
   std::vector<Real> resume_data() const override;
+  // Between cycles (all particles synchronised): the new state at t_; the next kicks use
+  // `carried` (the derivative moved with its entries) or the RHS at the new state; every particle
+  // is binned afresh at the next cycle.
+  void resize(const Resized& state) override;
+  std::vector<Real> carried_data() const override { return failed_ ? std::vector<Real>{} : dy_; }
 
  private:
+  void index_entries();
   std::int64_t length(int level) const { return kTicks >> level; }
   void cycle(Real top, Real t_end);
   void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
@@ -70,7 +76,7 @@ class BlockLeapfrogStepper final : public Stepper {
   OdeSystem& system_;
   const StepperOptions opts_;
   const Real top_;  // the top step: fixed_dt, else max_dt
-  const std::size_t n_, np_, xp_, vp_;
+  std::size_t n_, np_, xp_, vp_;
   std::vector<std::size_t> owner_;                 // entry -> particle
   std::vector<std::vector<std::size_t>> entries_;  // particle -> its kicked entries (not x)
   Real t_;
@@ -94,12 +100,7 @@ BlockLeapfrogStepper::BlockLeapfrogStepper(OdeSystem& system, const StepperOptio
       owner_(system.entry_particles()), entries_(system.num_particles()), t_(t0), y_(y0, y0 + n_), dy_(n_),
       level_(system.num_particles(), 0), start_(system.num_particles(), 0),
       bins_(top_, kMaxLevel, opts.partition_hysteresis), level_stats_(kMaxLevel + 1) {
-  if (owner_.size() != n_) throw std::logic_error("entry_particles: not one particle per state entry");
-  for (std::size_t k = 0; k < n_; ++k)
-    if (k < xp_ || k >= xp_ + np_) entries_.at(owner_[k]).push_back(k);
-  for (std::size_t i = 0; i < entries_.size(); ++i)  // e.g. num_particles() overridden, entry_particles() not
-    if (entries_[i].empty())
-      throw std::logic_error("entry_particles: particle " + std::to_string(i) + " owns no kicked state entry");
+  index_entries();
   const std::vector<Real>& r = opts.resume_data;
   if (!r.empty()) {  // a restart: the derivative and levels of the run being continued
     if (r.size() != n_ + level_.size() + 1)
@@ -123,6 +124,39 @@ std::vector<Real> BlockLeapfrogStepper::resume_data() const {
   r.insert(r.end(), level_.begin(), level_.end());
   r.push_back(bins_.dt_top() != top_ ? 1 : 0);  // after a shortened landing step: bin afresh
   return r;
+}
+
+// Each particle's kicked entries (every entry but the positions), from entry_particles().
+void BlockLeapfrogStepper::index_entries() {
+  owner_ = system_.entry_particles();
+  entries_.assign(system_.num_particles(), {});
+  if (owner_.size() != n_) throw std::logic_error("entry_particles: not one particle per state entry");
+  for (std::size_t k = 0; k < n_; ++k)
+    if (k < xp_ || k >= xp_ + np_) entries_.at(owner_[k]).push_back(k);
+  for (std::size_t i = 0; i < entries_.size(); ++i)  // e.g. num_particles() overridden, entry_particles() not
+    if (entries_[i].empty())
+      throw std::logic_error("entry_particles: particle " + std::to_string(i) + " owns no kicked state entry");
+}
+
+void BlockLeapfrogStepper::resize(const Resized& state) {
+  if (state.y == nullptr) throw std::invalid_argument("resize: no state");
+  n_ = system_.size(), np_ = system_.position_size(), xp_ = system_.position_offset(), vp_ = system_.velocity_offset();
+  y_.assign(state.y, state.y + n_);
+  dy_.assign(n_, 0);
+  index_entries();
+  level_.assign(entries_.size(), 0);
+  start_.assign(entries_.size(), 0);
+  fresh_ = true;
+  if (failed_) return;
+  if (state.carried) {
+    std::copy(state.carried, state.carried + n_, dy_.begin());
+  } else {
+    ++rhs_evals_;
+    if (const int code = system_.rhs(t_, y_.data(), dy_.data()); code != 0) {
+      failed_ = true;
+      failure_ = "leapfrog-blocks: rhs after resize returned " + std::to_string(code) + ": " + system_.last_error();
+    }
+  }
 }
 
 void BlockLeapfrogStepper::kick(const std::vector<std::size_t>& particles, Real factor, std::vector<Real>& w) const {

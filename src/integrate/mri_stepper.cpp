@@ -58,9 +58,15 @@ class MriStepper final : public Stepper {
   std::vector<int> roots_found() const override { return {}; }
   // The partition (each particle's level), so that a restart at (t, y) bins exactly as this
   // run would have: with it, the restart takes this run's steps bit for bit.
+  // With it the latest derivatives handed to particle_stable_dt, when there are.
   std::vector<Real> resume_data() const override {
-    return std::vector<Real>(partition_.levels().begin(), partition_.levels().end());
+    std::vector<Real> r(partition_.levels().begin(), partition_.levels().end());
+    if (approx_valid_[kSlow] && approx_valid_[kFast]) r.insert(r.end(), approx_f_.begin(), approx_f_.end());
+    return r;
   }
+  // Between slow steps: MRIStep and its fast integrator start afresh at (t, new y) (their step
+  // sizes are fixed; nothing else carries over), the partition is binned afresh.
+  void resize(const Resized& state) override;
 
  private:
   void create(Real t0);
@@ -83,6 +89,13 @@ class MriStepper final : public Stepper {
   LevelPartition partition_;
   std::vector<std::size_t> sets_[2];  // slow, fast particles (ascending)
   std::vector<Real> stable_dt_;
+  // The latest f_slow and f_fast values of each set's entries: the derivative handed to
+  // particle_stable_dt (its "stepper's approximation of f"; valid once both sets have been
+  // evaluated since the last repartition).
+  std::vector<Real> approx_f_;
+  std::vector<std::size_t> set_entries_[2];
+  bool approx_valid_[2] = {false, false};
+  long base_slow_steps_ = 0, base_fast_steps_ = 0;  // of the memories replaced by resize()
   LevelStats level_stats_[2];
   long repartitions_ = 0;  // partitions that changed a set
   bool sets_valid_ = false;  // sets_ follow partition_ (false until the first repartition)
@@ -101,11 +114,17 @@ MriStepper::MriStepper(OdeSystem& system, const StepperOptions& opts, Real t0, c
       y_(y0, y0 + system.size()),
       t_(t0),
       partition_(opts.fixed_dt, 1, opts.partition_hysteresis) {
-  if (!opts.resume_data.empty()) {  // a restart: the partition of the run being continued
-    if (opts.resume_data.size() != system.num_particles())
-      throw std::invalid_argument("resume_data: " + std::to_string(opts.resume_data.size()) + " levels for " +
-                                  std::to_string(system.num_particles()) + " particles");
-    partition_.set_levels(std::vector<int>(opts.resume_data.begin(), opts.resume_data.end()));
+  const std::vector<Real>& r = opts.resume_data;
+  const std::size_t np = system.num_particles();
+  if (!r.empty()) {  // a restart: the partition (and derivatives) of the run being continued
+    if (r.size() != np && r.size() != np + y_.size())
+      throw std::invalid_argument("resume_data: " + std::to_string(r.size()) + " values, expected " +
+                                  std::to_string(np) + " or " + std::to_string(np + y_.size()));
+    partition_.set_levels(std::vector<int>(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(np)));
+    if (r.size() > np) {
+      approx_f_.assign(r.begin() + static_cast<std::ptrdiff_t>(np), r.end());
+      approx_valid_[kSlow] = approx_valid_[kFast] = true;
+    }
   }
   repartition(t0, y0);
   create(t0);
@@ -153,7 +172,8 @@ void MriStepper::create(Real t0) {
 // particle whose stable step is below the fast step h/ratio is an error (the ratio is too small).
 void MriStepper::repartition(Real t, const Real* y) {
   stable_dt_.assign(system_.num_particles(), 0);
-  if (const int code = system_.particle_stable_dt(t, y, nullptr, stable_dt_.data()); code != 0)
+  const bool approx = approx_valid_[kSlow] && approx_valid_[kFast] && approx_f_.size() == y_.size();
+  if (const int code = system_.particle_stable_dt(t, y, approx ? approx_f_.data() : nullptr, stable_dt_.data()); code != 0)
     throw std::runtime_error("particle_stable_dt failed (code " + std::to_string(code) + ") at t=" + at_time(t) +
                              ": " + system_.last_error());
   std::size_t worst = 0;
@@ -170,6 +190,11 @@ void MriStepper::repartition(Real t, const Real* y) {
   sets_[kSlow] = partition_.at(0);
   sets_[kFast] = partition_.at_least(1);
   ++repartitions_;
+  const std::vector<std::size_t> owner = system_.entry_particles();
+  set_entries_[kSlow].clear(), set_entries_[kFast].clear();
+  for (std::size_t k = 0; k < owner.size(); ++k) set_entries_[partition_.level(owner[k]) > 0].push_back(k);
+  approx_f_.resize(y_.size());
+  approx_valid_[kSlow] = sets_[kSlow].empty(), approx_valid_[kFast] = sets_[kFast].empty();
 }
 
 // One level's derivatives (the other level's entries zero); an empty set costs no evaluation.
@@ -189,6 +214,11 @@ int MriStepper::evaluate(Level level, realtype t, N_Vector y, N_Vector ydot) noe
   level_stats_[level].particle_evals += static_cast<long>(set.size());
   try {
     const int code = system_.rhs_subset(t, N_VGetArrayPointer(y), set, N_VGetArrayPointer(ydot));
+    if (code == 0) {  // the latest values of this set's derivatives
+      const Real* f = N_VGetArrayPointer(ydot);
+      for (std::size_t k : set_entries_[level]) approx_f_[k] = f[k];
+      approx_valid_[level] = true;
+    }
     if (code != 0)
       callback_error_ = std::string(level == kSlow ? "slow" : "fast") + " rhs returned " + std::to_string(code) +
                         " at t=" + at_time(t) + ": " + system_.last_error();
@@ -232,6 +262,23 @@ std::string MriStepper::failure_text(int flag) const {
   if (!arkode_message_.empty()) why += ": " + arkode_message_;
   if (!callback_error_.empty()) why += "; " + callback_error_;
   return why;
+}
+
+void MriStepper::resize(const Resized& state) {
+  if (state.y == nullptr) throw std::invalid_argument("resize: no state");
+  long slow = 0, fast = 0;
+  MRIStepGetNumSteps(mem_.get(), &slow);
+  ARKStepGetNumSteps(fast_mem_.get(), &fast);
+  base_slow_steps_ += slow, base_fast_steps_ += fast;
+  mem_.reset();  // in this order: MRIStep refers to the inner stepper, which refers to ARKStep
+  inner_.reset();
+  fast_mem_.reset();
+  y_.assign(state.y, state.y + system_.size());
+  sets_valid_ = false;
+  approx_valid_[kSlow] = approx_valid_[kFast] = false;
+  restart_pending_ = false;
+  repartition(t_, y_.data());  // a new particle count bins afresh
+  create(t_);
 }
 
 AdvanceStatus MriStepper::end_at_last_step(Real* y, Real& t, AdvanceStatus status) {
@@ -284,6 +331,7 @@ StepperStats MriStepper::stats() const {
   long slow_steps = 0, fast_steps = 0;
   MRIStepGetNumSteps(mem_.get(), &slow_steps);
   ARKStepGetNumSteps(fast_mem_.get(), &fast_steps);
+  slow_steps += base_slow_steps_, fast_steps += base_fast_steps_;
   s.steps = s.attempts = slow_steps;
   s.levels = {level_stats_[kSlow], level_stats_[kFast]};
   s.levels[kSlow].steps = slow_steps;

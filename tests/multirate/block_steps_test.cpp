@@ -162,6 +162,32 @@ TEST(BlockSteps, ARestartCarriesTheLevelsAndTheDerivative) {
   EXPECT_NE(y_fresh, y_continued);
 }
 
+// resize() between cycles (the time loop's particle changes), here to the same state with the
+// carried derivative: the run goes on as a fresh stepper with that derivative whose first cycle
+// bins afresh (resume_data: derivative, levels, "bin afresh").
+TEST(BlockSteps, ResizeCarriesTheDerivativeAndBinsAfresh) {
+  const Real h = 0.05, t1 = 0.5, t2 = 1.0;
+  HystereticEnsemble a_sys(0.2, 0.4, 1.1 * h / 4), b_sys(0.2, 0.4, 1.1 * h / 4);
+  OscillatorEnsemble shape = ensemble();
+  const std::vector<Real> y0 = initial_state(shape);
+  StepperOptions o = blocks(h);
+  o.cfl_safety = 1;
+  auto a = make_stepper(a_sys, o, 0, y0.data());
+  std::vector<Real> y1(y0.size()), ya(y0.size()), yb(y0.size());
+  Real t = 0;
+  ASSERT_EQ(a->advance(t1, y1.data(), t), AdvanceStatus::Reached);
+  const std::vector<Real> carried = a->carried_data();
+  ASSERT_EQ(carried.size(), y0.size());
+  a->resize({y1.data(), nullptr, carried.data()});
+  ASSERT_EQ(a->advance(t2, ya.data(), t), AdvanceStatus::Reached) << a->failure_reason();
+  o.resume_data = carried;
+  o.resume_data.insert(o.resume_data.end(), 8, 0.0);  // levels (binned afresh anyway)
+  o.resume_data.push_back(1);                         // bin afresh
+  auto b = make_stepper(b_sys, o, t1, y1.data());
+  ASSERT_EQ(b->advance(t2, yb.data(), t), AdvanceStatus::Reached) << b->failure_reason();
+  for (std::size_t k = 0; k < ya.size(); ++k) EXPECT_EQ(ya[k], yb[k]) << "entry " << k;
+}
+
 TEST(BlockSteps, BadOptionsAreOneLineInvalidArguments) {
   OscillatorEnsemble sys = ensemble();
   const std::vector<Real> y0 = initial_state(sys);

@@ -182,13 +182,31 @@ TEST(MriBookkeeping, ARestartCarriesThePartition) {
   const std::vector<Real> y0 = initial_state(8);
   std::vector<Real> resume;
   const std::vector<Real> y1 = run(0, y0, {}, {t1}, &resume);
-  ASSERT_EQ(resume.size(), 8u);
+  ASSERT_EQ(resume.size(), 8u + 16u);  // the levels, then the latest derivatives
   EXPECT_EQ(resume[0], 1);  // held fast by the hysteresis
   const std::vector<Real> y_continued = run(0, y0, {}, {t1, t2}, nullptr);
   const std::vector<Real> y_restarted = run(t1, y1, resume, {t2}, nullptr);
   const std::vector<Real> y_fresh = run(t1, y1, {}, {t2}, nullptr);
   for (std::size_t k = 0; k < y0.size(); ++k) EXPECT_EQ(y_restarted[k], y_continued[k]) << "entry " << k;
   EXPECT_NE(y_fresh, y_continued);  // the test can tell: without the partition the steps differ
+}
+
+// resize() between slow steps (the time loop's particle changes), here to the same state: the
+// run goes on as a fresh stepper at (t1, y(t1)) would, bit for bit, and counts its steps on.
+TEST(MriBookkeeping, ResizeStartsMriStepAfreshAtTheNewState) {
+  const Real t1 = 0.5, t2 = 1.0;
+  OscillatorEnsemble a_sys = ensemble(), b_sys = ensemble();
+  const std::vector<Real> y0 = initial_state(8);
+  auto a = make_stepper(a_sys, mri(), 0, y0.data());
+  std::vector<Real> y1(y0.size()), ya(y0.size()), yb(y0.size());
+  Real t = 0;
+  ASSERT_EQ(a->advance(t1, y1.data(), t), AdvanceStatus::Reached);
+  a->resize({y1.data(), nullptr, nullptr});
+  ASSERT_EQ(a->advance(t2, ya.data(), t), AdvanceStatus::Reached) << a->failure_reason();
+  EXPECT_EQ(a->stats().steps, 20);
+  auto b = make_stepper(b_sys, mri(), t1, y1.data());
+  ASSERT_EQ(b->advance(t2, yb.data(), t), AdvanceStatus::Reached);
+  for (std::size_t k = 0; k < ya.size(); ++k) EXPECT_EQ(ya[k], yb[k]) << "entry " << k;
 }
 
 TEST(MriBookkeeping, BadOptionsAreOneLineInvalidArguments) {
