@@ -19,7 +19,7 @@
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
-#include "sphark/integrate/level_partition.hpp"
+#include "mri_split.hpp"
 #include "steppers.hpp"
 #include "sundials_handles.hpp"
 
@@ -60,7 +60,7 @@ class MriStepper final : public Stepper {
   // run would have: with it, the restart takes this run's steps bit for bit.
   // With it the latest derivatives handed to particle_stable_dt, when there are.
   std::vector<Real> resume_data() const override {
-    std::vector<Real> r(partition_.levels().begin(), partition_.levels().end());
+    std::vector<Real> r(split_.levels().begin(), split_.levels().end());
     if (approx_valid_[kSlow] && approx_valid_[kFast]) r.insert(r.end(), approx_f_.begin(), approx_f_.end());
     return r;
   }
@@ -82,11 +82,11 @@ class MriStepper final : public Stepper {
 
   OdeSystem& system_;
   const StepperOptions opts_;
-  const Real h_fast_;
   ContextPtr ctx_;
   std::vector<Real> y_;  // state after the last accepted slow step
   Real t_;
-  LevelPartition partition_;
+  MriSplit split_;
+  Real h_slow_set_ = 0, h_fast_set_ = 0;  // the fixed steps MRIStep and ARKStep were given
   std::vector<std::size_t> sets_[2];  // slow, fast particles (ascending)
   std::vector<Real> stable_dt_;
   // The latest f_slow and f_fast values of each set's entries: the derivative handed to
@@ -109,18 +109,17 @@ class MriStepper final : public Stepper {
 MriStepper::MriStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0)
     : system_(system),
       opts_(opts),
-      h_fast_(opts.fixed_dt / opts.mri_ratio),
       ctx_(make_context()),
       y_(y0, y0 + system.size()),
       t_(t0),
-      partition_(opts.fixed_dt, 1, opts.partition_hysteresis) {
+      split_(opts) {
   const std::vector<Real>& r = opts.resume_data;
   const std::size_t np = system.num_particles();
   if (!r.empty()) {  // a restart: the partition (and derivatives) of the run being continued
     if (r.size() != np && r.size() != np + y_.size())
       throw std::invalid_argument("resume_data: " + std::to_string(r.size()) + " values, expected " +
                                   std::to_string(np) + " or " + std::to_string(np + y_.size()));
-    partition_.set_levels(std::vector<int>(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(np)));
+    split_.set_levels(std::vector<int>(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(np)));
     if (r.size() > np) {
       approx_f_.assign(r.begin() + static_cast<std::ptrdiff_t>(np), r.end());
       approx_valid_[kSlow] = approx_valid_[kFast] = true;
@@ -146,7 +145,7 @@ void MriStepper::create(Real t0) {
   check(ARKStepSetErrHandlerFn(fast, &error_cb, this), "ARKStepSetErrHandlerFn");
   if (ARKStepSetTableName(fast, "ARKODE_DIRK_NONE", opts_.mri_fast_table.c_str()) < 0)
     throw std::invalid_argument("mri_fast_table=" + opts_.mri_fast_table + ": ARKStepSetTableName rejected it");
-  check(ARKStepSetFixedStep(fast, h_fast_), "ARKStepSetFixedStep");
+  check(ARKStepSetFixedStep(fast, split_.h_fast()), "ARKStepSetFixedStep");
   // Lagrange: the default Hermite interpolant costs one more f_fast evaluation per fast step.
   check(ARKStepSetInterpolantType(fast, ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType");
   check(ARKStepSetMaxNumSteps(fast, opts_.max_steps), "ARKStepSetMaxNumSteps");
@@ -164,35 +163,27 @@ void MriStepper::create(Real t0) {
   const int flag = MRIStepSetCoupling(mem, table);
   MRIStepCoupling_Free(table);  // copied by MRIStepSetCoupling
   check(flag, "MRIStepSetCoupling");
-  check(MRIStepSetFixedStep(mem, opts_.fixed_dt), "MRIStepSetFixedStep");
+  check(MRIStepSetFixedStep(mem, split_.h_slow()), "MRIStepSetFixedStep");
+  h_slow_set_ = split_.h_slow(), h_fast_set_ = split_.h_fast();
   check(MRIStepSetMaxNumSteps(mem, opts_.max_steps), "MRIStepSetMaxNumSteps");
 }
 
-// Levels 0 (slow: stable step x cfl_safety >= fixed_dt) and 1 (fast), with hysteresis; a fast
-// particle whose stable step is below the fast step h/ratio is an error (the ratio is too small).
+// The split at (t, y) from the particles' stable steps x cfl_safety (mri_split.hpp).
 void MriStepper::repartition(Real t, const Real* y) {
   stable_dt_.assign(system_.num_particles(), 0);
   const bool approx = approx_valid_[kSlow] && approx_valid_[kFast] && approx_f_.size() == y_.size();
   if (const int code = system_.particle_stable_dt(t, y, approx ? approx_f_.data() : nullptr, stable_dt_.data()); code != 0)
     throw std::runtime_error("particle_stable_dt failed (code " + std::to_string(code) + ") at t=" + at_time(t) +
                              ": " + system_.last_error());
-  std::size_t worst = 0;
-  for (std::size_t i = 0; i < stable_dt_.size(); ++i) {
-    stable_dt_[i] *= opts_.cfl_safety;
-    if (stable_dt_[i] < stable_dt_[worst]) worst = i;
-  }
-  if (!stable_dt_.empty() && stable_dt_[worst] < h_fast_)
-    throw std::runtime_error("particle " + std::to_string(worst) + " has the stable step " + at_time(stable_dt_[worst]) +
-                             " < fast step fixed_dt/mri_ratio=" + at_time(h_fast_) + " at t=" + at_time(t) +
-                             ": raise mri_ratio");
-  if (!partition_.update(stable_dt_) && sets_valid_) return;
+  for (Real& dt : stable_dt_) dt *= opts_.cfl_safety;
+  if (!split_.update(stable_dt_, t) && sets_valid_) return;
   sets_valid_ = true;
-  sets_[kSlow] = partition_.at(0);
-  sets_[kFast] = partition_.at_least(1);
+  sets_[kSlow] = split_.slow();
+  sets_[kFast] = split_.fast();
   ++repartitions_;
   const std::vector<std::size_t> owner = system_.entry_particles();
   set_entries_[kSlow].clear(), set_entries_[kFast].clear();
-  for (std::size_t k = 0; k < owner.size(); ++k) set_entries_[partition_.level(owner[k]) > 0].push_back(k);
+  for (std::size_t k = 0; k < owner.size(); ++k) set_entries_[split_.is_fast(owner[k])].push_back(k);
   approx_f_.resize(y_.size());
   approx_valid_[kSlow] = sets_[kSlow].empty(), approx_valid_[kFast] = sets_[kFast].empty();
 }
@@ -299,6 +290,12 @@ AdvanceStatus MriStepper::step(Real t_out, Real* y, Real& t) {
   }
   interrupted_ = false;
   callback_error_.clear();
+  if (split_.h_slow() != h_slow_set_ || split_.h_fast() != h_fast_set_) {  // adaptive: new steps
+    // ARKODE takes h = hin at every fixed step: the next step is that of a fresh MRIStep.
+    check(MRIStepSetFixedStep(mem_.get(), split_.h_slow()), "MRIStepSetFixedStep");
+    check(ARKStepSetFixedStep(fast_mem_.get(), split_.h_fast()), "ARKStepSetFixedStep");
+    h_slow_set_ = split_.h_slow(), h_fast_set_ = split_.h_fast();
+  }
   check(MRIStepSetStopTime(mem_.get(), t_out), "MRIStepSetStopTime");
   auto yout = make_view(y_.size(), y, ctx_.get());
   realtype t_reached = t_;

@@ -74,8 +74,10 @@ void validate_mri(const OdeSystem& system, const StepperOptions& o) {
   const std::string table = o.method.substr(4);
   require(o, mri_table_order(table) > 0, "method", o.method,
           "unknown MRI coupling table (mri-ARKODE_MIS_KW3, mri-ARKODE_MRI_GARK_ERK33a, mri-ARKODE_MRI_GARK_ERK45a)");
-  require(o, o.fixed_dt > 0, "method", o.method,
-          "MRIStep of SUNDIALS 6.4.1 takes fixed slow steps: set fixed_dt");
+  require(o, o.fixed_dt > 0 || o.max_dt > 0, "method", o.method,
+          "MRIStep of SUNDIALS 6.4.1 takes fixed slow steps: set fixed_dt, or max_dt for power-of-two slow steps");
+  require(o, o.mri_slow_fraction > 0 && o.mri_slow_fraction <= 1, "mri_slow_fraction",
+          number_text(o.mri_slow_fraction), "must be in (0, 1]");
   require(o, o.mri_ratio >= 1, "mri_ratio", std::to_string(o.mri_ratio), "must be >= 1");
   require(o, is_erk(o.mri_fast_table), "mri_fast_table", o.mri_fast_table, "not an ERK table of SUNDIALS 6.4.1");
   require(o, o.partition_hysteresis >= 0, "partition_hysteresis", number_text(o.partition_hysteresis), "must be >= 0");
@@ -190,8 +192,12 @@ std::string describe(const StepperOptions& o) {
     return s.str();
   }
   if (o.method.rfind("mri-", 0) == 0) {
-    s << "MRIStep " << o.method.substr(4) << ", slow dt=" << o.fixed_dt << ", fast " << o.mri_fast_table
-      << " dt=slow/" << o.mri_ratio << ", hysteresis " << o.partition_hysteresis << ", max_steps=" << o.max_steps;
+    s << "MRIStep " << o.method.substr(4);
+    if (o.fixed_dt > 0) s << ", slow dt=" << o.fixed_dt << ", fast " << o.mri_fast_table << " dt=slow/" << o.mri_ratio;
+    else s << ", slow dt=max_dt/2^l (" << o.mri_slow_fraction << " of the particles slow), max_dt=" << o.max_dt
+           << ", fast " << o.mri_fast_table << " dt=slow/max(" << o.mri_ratio << ", 2^levels)";
+    s << ", levels from " << o.cfl_safety << " x particle_stable_dt, hysteresis " << o.partition_hysteresis
+      << ", max_steps=" << o.max_steps;
     return s.str();
   }
   if (o.method == "ark-imex") s << "ARKStep IMEX " << o.imex_table;

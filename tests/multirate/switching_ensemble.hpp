@@ -37,4 +37,19 @@ class HystereticEnsemble : public OscillatorEnsemble {
   Real t_on_, t_off_, after_;
 };
 
+// Every particle's reported stable step halves from t_halve on: all move one level deeper.
+class HalvingEnsemble : public OscillatorEnsemble {
+ public:
+  explicit HalvingEnsemble(Real t_halve) : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_(t_halve) {}
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
+    OscillatorEnsemble::particle_stable_dt(t, y, ydot, dt);
+    if (t >= t_)
+      for (std::size_t i = 0; i < n(); ++i) dt[i] *= 0.5;
+    return 0;
+  }
+
+ private:
+  Real t_;
+};
+
 }  // namespace sphark::test

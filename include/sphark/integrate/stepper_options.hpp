@@ -59,14 +59,20 @@ struct StepperOptions {
   // ARK IMEX pair of ARKODE 6.4.1: ARK324L2SA (order 3), ARK436L2SA (4), ARK437L2SA (4),
   // ARK548L2SA (5), ARK548L2SAb (5).
   std::string imex_table = "ARK436L2SA";
-  // Multirate (issue #17), method "mri-<coupling table>" (mri_table_names()): the slow step is
-  // fixed_dt (MRIStep of SUNDIALS 6.4.1 has fixed slow steps), the fast step fixed_dt / mri_ratio
-  // with the explicit table mri_fast_table (any ERK table, see erk_table_names()). Particles
-  // whose stable step (x cfl_safety) is below fixed_dt are fast; they return to the slow set
-  // when it exceeds fixed_dt by the factor (1 + partition_hysteresis). Repartitioned before
-  // every slow step.
+  // Multirate (issue #17), method "mri-<coupling table>" (mri_table_names()), fast integrator
+  // an explicit ARKStep with mri_fast_table (any ERK table, see erk_table_names()). MRIStep of
+  // SUNDIALS 6.4.1 takes fixed slow steps; repartitioned before every slow step:
+  //  - fixed_dt > 0: the slow step is fixed_dt, the fast step fixed_dt / mri_ratio; particles
+  //    whose stable step (x cfl_safety) is below fixed_dt are fast;
+  //  - else max_dt > 0: the particles are binned on the power-of-two levels of max_dt; the slow
+  //    step is the level holding (with the shallower ones) mri_slow_fraction of the particles,
+  //    the deeper ones are fast, the fast step is the deepest level's (at least slow / mri_ratio);
+  //    MRIStep restarts when these steps change.
+  // A particle moves to a longer step only when its stable step exceeds it by the factor
+  // (1 + partition_hysteresis) (also the block steps of "leapfrog-blocks").
   int mri_ratio = 4;
   std::string mri_fast_table = "ARKODE_ZONNEVELD_5_3_4";
+  Real mri_slow_fraction = 0.9;
   Real partition_hysteresis = 0.25;
   // Distributed run: the ranks that each hold a part of the state (system.size() is then the
   // local length, every rank passes the same options). ARKODE runs on SUNDIALS' parallel
