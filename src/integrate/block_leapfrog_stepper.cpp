@@ -7,6 +7,12 @@
 //   every event:        x += (t_next - t) v                     (drift of ALL particles)
 //   end of i's step:    ẇ_i = f_i(t, x, w*) for the active set  (OdeSystem::rhs_subset)
 //                       w_i += dt_i/2 ẇ_i                       (kick)
+// Wake-up (the time-step limiter of Saitoh & Makino 2009, ApJ 697 L99, as Phantom's): at every
+// event a particle whose stable step (at the predicted state) has fallen below its current step
+// ends that step early, at the event: its drift and start kick are cut back to the elapsed part
+// e of the step (x -= e (dt_i - e)/2 ẇ_old, w -= (dt_i - e)/2 ẇ_old), it is evaluated with the
+// ending particles and kicked by e/2 ẇ_new, then binned afresh (a system that wants neighbours'
+// steps to bound each other folds that into particle_stable_dt).
 // w* predicts every particle's w to the event time from its last kick: w_j + (t - t_mid_j) ẇ_j,
 // t_mid_j the middle of j's current step (for an active particle: the leapfrog's predictor
 // w_half + dt/2 ẇ_n, as in "leapfrog"). An ending particle takes a new level at once if it
@@ -70,7 +76,10 @@ class BlockLeapfrogStepper final : public Stepper {
   void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
   void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
   std::vector<std::size_t> ending_at(std::int64_t tick) const;
-  void evaluate(Real t, const std::vector<std::size_t>& active, std::int64_t tick);
+  void predict(std::int64_t tick);
+  std::vector<std::size_t> woken_at(Real t, std::int64_t tick, const std::vector<std::size_t>& ending);
+  void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
+  void evaluate(Real t, const std::vector<std::size_t>& active);
   void count(const std::vector<std::size_t>& active);
 
   OdeSystem& system_;
@@ -88,7 +97,8 @@ class BlockLeapfrogStepper final : public Stepper {
   Real tick_dt_ = 0;
   bool fresh_ = true;  // the next cycle bins afresh (first cycle, or a new top step)
   std::vector<LevelStats> level_stats_;
-  long events_ = 0, rhs_evals_ = 1;
+  long events_ = 0, rhs_evals_ = 1, wakeups_ = 0;
+  std::vector<Real> old_dy_;  // the woken particles' derivatives before their early evaluation
   Real last_dt_ = 0;
   bool failed_ = false;
   std::string failure_;
@@ -200,13 +210,47 @@ void BlockLeapfrogStepper::count(const std::vector<std::size_t>& active) {
   }
 }
 
-// The active particles' derivatives at the event: every particle's w predicted to t (w*).
-void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& active, std::int64_t tick) {
+// Every particle's w predicted to the event (w*), into eval_.
+void BlockLeapfrogStepper::predict(std::int64_t tick) {
   eval_ = w_;
   for (std::size_t j = 0; j < level_.size(); ++j) {
     const Real lead = (static_cast<Real>(tick - start_[j]) - 0.5 * static_cast<Real>(length(level_[j]))) * tick_dt_;
     for (std::size_t k : entries_[j]) eval_[k] += lead * dy_[k];
   }
+}
+
+// The particles, not ending at `tick`, whose stable step at the predicted state is below their
+// current step (ascending).
+std::vector<std::size_t> BlockLeapfrogStepper::woken_at(Real t, std::int64_t tick, const std::vector<std::size_t>& ending) {
+  stable_.assign(level_.size(), 0);
+  if (system_.particle_stable_dt(t, eval_.data(), dy_.data(), stable_.data()) != 0)
+    throw CycleFailure("particle_stable_dt failed at t=" + at_time(t) + ": " + system_.last_error());
+  std::vector<std::size_t> woken;
+  std::size_t e = 0;
+  for (std::size_t i = 0; i < level_.size(); ++i) {
+    while (e < ending.size() && ending[e] < i) ++e;
+    if (e < ending.size() && ending[e] == i) continue;
+    if (start_[i] + length(level_[i]) > tick && opts_.cfl_safety * stable_[i] < bins_.level_dt(level_[i])) woken.push_back(i);
+  }
+  return woken;
+}
+
+// A woken particle's step is cut to its elapsed part e: the drift and the start kick it got with
+// the step's full length become those of a step of length e (its old derivative kept in old_dy_).
+void BlockLeapfrogStepper::cut_back(const std::vector<std::size_t>& woken, std::int64_t tick) {
+  old_dy_ = dy_;
+  for (std::size_t i : woken) {
+    const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_, full = static_cast<Real>(length(level_[i])) * tick_dt_;
+    for (std::size_t k : entries_[i]) {
+      w_[k] -= 0.5 * (full - e) * dy_[k];
+      if (k >= vp_ && k < vp_ + np_) w_[xp_ + (k - vp_)] -= e * 0.5 * (full - e) * dy_[k];
+    }
+    ++wakeups_;
+  }
+}
+
+// The active particles' derivatives at (t, eval_).
+void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& active) {
   if (opts_.interrupt && opts_.interrupt()) throw CycleInterrupted{};
   count(active);
   ++rhs_evals_;
@@ -237,9 +281,28 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
     tick = next;
     ++events_;
     const Real t = next == kTicks ? t_end : t_ + static_cast<Real>(tick) * tick_dt_;
-    const std::vector<std::size_t> active = ending_at(tick);
-    evaluate(t, active, tick);
-    kick(active, 0.5, w_);  // end of their steps
+    const std::vector<std::size_t> ending = ending_at(tick);
+    predict(tick);
+    const std::vector<std::size_t> woken = tick < kTicks ? woken_at(t, tick, ending) : std::vector<std::size_t>{};
+    std::vector<std::size_t> active = ending;
+    if (!woken.empty()) {
+      cut_back(woken, tick);
+      for (std::size_t i : woken) {  // their w* from the cut-back state: as at the end of a step of length e
+        const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_;
+        for (std::size_t k : entries_[i]) {
+          eval_[k] = w_[k] + 0.5 * e * dy_[k];
+          if (k >= vp_ && k < vp_ + np_) eval_[xp_ + (k - vp_)] = w_[xp_ + (k - vp_)];
+        }
+      }
+      active.insert(active.end(), woken.begin(), woken.end());
+      std::sort(active.begin(), active.end());
+    }
+    evaluate(t, active);
+    kick(ending, 0.5, w_);  // end of their steps
+    for (std::size_t i : woken) {  // end of their cut steps: e/2 of the new derivative
+      const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_;
+      for (std::size_t k : entries_[i]) w_[k] += 0.5 * e * dy_[k];
+    }
     if (tick == kTicks) break;
     rebin(t, active, tick, false);
     kick(active, 0.5, w_);  // start of their next steps

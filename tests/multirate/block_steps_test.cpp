@@ -188,6 +188,33 @@ TEST(BlockSteps, ResizeCarriesTheDerivativeAndBinsAfresh) {
   for (std::size_t k = 0; k < ya.size(); ++k) EXPECT_EQ(ya[k], yb[k]) << "entry " << k;
 }
 
+// Wake-up: particle 0 reports a fast stable step from t = 0.52 on, in the middle of its level-0
+// step [0.5, 0.6): it is evaluated at the first event after 0.52 (the fast particles' grid,
+// h / 128), not at 0.6, and the run keeps second order.
+TEST(BlockSteps, AParticleWhoseStableStepFallsIsWokenUp) {
+  std::vector<Real> e;
+  for (int k = 0; k < 4; ++k) {
+    const Real h = 0.1 / (1 << k);
+    SwitchingEnsemble sys(0.52);
+    sys.record_calls = true;
+    const std::vector<Real> y0 = initial_state(sys);
+    auto stepper = make_stepper(sys, blocks(h), 0, y0.data());  // levels: slow 0, fast 7
+    std::vector<Real> y(y0.size());
+    Real t = 0;
+    ASSERT_EQ(stepper->advance(1.0, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    Real first = 2;
+    for (const auto& call : sys.calls)
+      if (call.t > 0.52 && call.active.front() == 0) first = std::min(first, call.t);
+    EXPECT_LE(first, 0.52 + h / 128 + 1e-12) << "h=" << h;
+    e.push_back(max_error(y, sys.exact(y0, 1.0)));
+  }
+  for (std::size_t k = 1; k < e.size(); ++k) {
+    const Real order = std::log2(e[k - 1] / e[k]);
+    std::printf("with a wake-up: error %.3e -> %.3e, order %.3f\n", e[k - 1], e[k], order);
+    EXPECT_GE(order, 2 - 0.3) << "halving " << k;
+  }
+}
+
 TEST(BlockSteps, BadOptionsAreOneLineInvalidArguments) {
   OscillatorEnsemble sys = ensemble();
   const std::vector<Real> y0 = initial_state(sys);
