@@ -1,10 +1,12 @@
 // The multirate interface of the SPMHD scheme (issue #17): rhs_subset(A) and
 // rhs_subset(complement of A) add up to rhs() bit for bit on a self-gravitating, magnetised,
 // rotating clump with a sink particle (every term on); each is zero outside its set; the pair
-// interactions split between them; particle_stable_dt is what max_stable_dt minimises.
+// interactions split between them; particle_stable_dt is what max_stable_dt minimises, capped by
+// 4 x the neighbours'.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -99,6 +101,8 @@ TEST(SpmhdSubsets, TwoComplementarySubsetsAddUpToTheFullRhsBitForBit) {
 TEST(SpmhdSubsets, ParticleStableStepsAreWhatMaxStableDtMinimises) {
   Clump c = clump();
   SpmhdScheme<3>& s = *c.scheme;
+  const std::size_t v0 = s.layout().offset(Field::Velocity);
+  for (int k = 0; k < 3; ++k) c.y[v0 + 3 * 5 + k] *= 300;  // particle 5: a short Courant step, its neighbours capped
   std::vector<Real> dt(s.num_particles());
   ASSERT_EQ(s.particle_stable_dt(0, c.y.data(), nullptr, dt.data()), 0) << s.last_error();
   EXPECT_EQ(dt.back(), std::numeric_limits<Real>::infinity());  // the sink
@@ -106,6 +110,24 @@ TEST(SpmhdSubsets, ParticleStableStepsAreWhatMaxStableDtMinimises) {
   EXPECT_EQ(least, s.max_stable_dt(0, c.y.data(), nullptr));
   const Real most = *std::max_element(dt.begin(), dt.end() - 1);
   EXPECT_GT(most, least);
+  // Each step is its own (Courant, force) capped by 4 x its neighbours' own ones.
+  std::vector<Real> courant, force;
+  ASSERT_EQ(s.stable_steps(0, c.y.data(), nullptr, courant, force), 0);
+  const std::vector<Real> h = s.h(), x = s.positions();
+  std::size_t capped = 0;
+  for (std::size_t a = 0; a < s.particles(); ++a) {
+    Real expected = std::min(courant[a], force[a]);
+    for (std::size_t b = 0; b < s.particles(); ++b) {
+      const Real r = (Eigen::Map<const Vec<3>>(&x[3 * a]) - Eigen::Map<const Vec<3>>(&x[3 * b])).norm();
+      if (b != a && r < CubicSpline<3>::support * std::max(h[a], h[b]))
+        expected = std::min(expected, 4 * std::min(courant[b], force[b]));
+    }
+    EXPECT_EQ(dt[a], expected) << "particle " << a;
+    capped += expected < std::min(courant[a], force[a]);
+  }
+  std::printf("neighbour limiter: %zu of %zu particles capped, steps from %.3e to %.3e\n", capped, s.particles(),
+              least, most);
+  EXPECT_GT(capped, 0u);
 }
 
 }  // namespace

@@ -46,10 +46,28 @@ int SpmhdScheme<D, K>::rhs_subset(Real /*t*/, const Real* y, std::span<const std
   return 0;
 }
 
+// Neighbours' steps bound each other: a particle's step is at most kNeighbourStepFactor times
+// that of any particle within the kernel support (the time-step limiter of Saitoh & Makino 2009,
+// ApJ 697 L99, factor 4), so that a long-stepping particle is woken up (block steps) or made fast
+// (MRIStep) before a shock from a short-stepping neighbour reaches it.
+constexpr Real kNeighbourStepFactor = 4;
+
 template <int D, class K>
 int SpmhdScheme<D, K>::particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) {
   if (stable_steps(t, y, ydot, courant_steps_, force_steps_) != 0) return 1;  // error_ says why
-  for (std::size_t a = 0; a < n_; ++a) dt[a] = std::min(courant_steps_[a], force_steps_[a]);
+  std::vector<Real>& own = courant_steps_;
+  for (std::size_t a = 0; a < n_; ++a) own[a] = std::min(courant_steps_[a], force_steps_[a]);
+  const NeighbourList& L = ns_.list();  // slots; stable_steps prepared the lists for y
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::size_t a = 0; a < n_; ++a) {
+    Real least = std::numeric_limits<Real>::infinity();
+    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
+      const std::size_t b = L.indices[k];
+      const Real reach = K::support * std::max(h_[a], h_[b]);
+      if (ns_.separation(x_.data(), a, b).squaredNorm() < reach * reach) least = std::min(least, own[perm_[b]]);
+    }
+    dt[perm_[a]] = std::min(own[perm_[a]], kNeighbourStepFactor * least);
+  }
   std::fill(dt + n_, dt + num_particles(), std::numeric_limits<Real>::infinity());  // sinks
   return 0;
 }
