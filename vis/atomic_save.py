@@ -38,6 +38,17 @@ def save_figure(fig, path, **kwargs):
         if os.path.exists(tmp):
             os.remove(tmp)
         raise
+    finally:
+        _release(fig)
+
+
+def _release(fig):
+    """Frees a saved matplotlib figure (many pictures are drawn in one process: vis/batch.py)."""
+    try:
+        import matplotlib.pyplot as plt
+        plt.close(fig)
+    except Exception:  # not a pyplot figure
+        pass
 
 
 def write_text(path, text):

@@ -57,7 +57,7 @@ def column(columns, name, path, option):
     return columns[name]
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser(
         description="Line charts from one or more CSV files (header row, numeric columns).",
         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
@@ -73,9 +73,11 @@ def main():
     ap.add_argument("--xlabel", help="x axis label (default: the x column)")
     ap.add_argument("--ylabel", help="y axis label (default: the y column)")
     ap.add_argument("--title", help="chart title")
+    ap.add_argument("--styles", help="comma-separated matplotlib line styles, one per line in order "
+                    "(e.g. '-,-,--,--'; default all solid)")
     ap.add_argument("--size", nargs=2, type=float, default=[6.4, 4.4], metavar=("W", "H"),
                     help="figure size in inches (default 6.4 4.4)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
 
     if args.y_extra and len(args.csv) != 1:
         fail("--y-extra: only with a single --csv")
@@ -98,14 +100,18 @@ def main():
         else:
             series.append((x, column(cols, args.y, path, "--y"), label))
 
-    for x, y, label in series:
+    styles = args.styles.split(",") if args.styles else []
+    if len(styles) > len(series):
+        fail(f"--styles: {len(styles)} styles for {len(series)} lines")
+    styles += ["-"] * (len(series) - len(styles))
+    for (x, y, label), style in zip(series, styles):
         if args.logy:  # non-positive values cannot be drawn on a log axis
             pts = [(a, b) for a, b in zip(x, y) if b > 0 and math.isfinite(b)]
             if len(pts) < len(y):
                 print(f"charts.py: warning: {label}: {len(y) - len(pts)} non-positive values "
                       "left out of the log axis", file=sys.stderr)
             x, y = [p[0] for p in pts], [p[1] for p in pts]
-        ax.plot(x, y, label=label, linewidth=1.4)
+        ax.plot(x, y, style, label=label, linewidth=1.4)
     if args.logy:
         ax.set_yscale("log")
     if args.logx:

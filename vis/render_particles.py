@@ -212,7 +212,7 @@ def render_points(vtk, poly, name, comp, lo, hi, cmap, rect, px, point_size, fla
     return rgb.copy()
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser(description="Render particle frames to PNG (VTK offscreen).",
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog=__doc__)
@@ -233,7 +233,7 @@ def main():
     ap.add_argument("--cmap", default="viridis", help="matplotlib colour map (default viridis)")
     ap.add_argument("--title", help="title line above the panels")
     ap.add_argument("--out", required=True, help="output PNG")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
 
     frames = series_frames(args.input)
     arrays = args.arrays or ([args.array] if args.array else None)

@@ -20,6 +20,8 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
   p.add("--rtol", &o.rtol, "relative tolerance of the adaptive step", Positive{});
   p.add("--atol", &o.atol, "absolute tolerance of the adaptive step", Positive{});
   p.add("--dt", &o.dt, "fixed time step, 0 = adaptive", NonNegative{});
+  p.add_switch("--step-cap", &o.step_cap,
+               "adaptive steps also bounded by the scheme's stable (CFL) step; off: by the error control alone");
   p.add("--max-dt", &o.max_dt, "upper bound on every step, 0 = none (the top step of leapfrog-blocks)", NonNegative{});
   p.add("--mri-ratio", &o.mri_ratio, "--stepper mri-<table>: slow step / fast step", Positive{});
   p.add("--mri-fast-table", &o.mri_fast_table, "--stepper mri-<table>: the fast integrator's ERK table",
@@ -52,6 +54,7 @@ StepperOptions stepper_options(const CoreOptions& o) {
   s.rtol = o.rtol;
   s.atol = {o.atol};
   s.fixed_dt = o.dt;
+  s.cap_by_stability = o.step_cap;
   s.max_dt = o.max_dt;
   s.mri_ratio = o.mri_ratio;
   s.mri_fast_table = o.mri_fast_table;

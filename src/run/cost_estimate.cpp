@@ -133,10 +133,16 @@ void estimate_time(CostEstimate& e, OdeSystem& system, const StepperOptions& so,
                    const ProbeMeasurement& probe) {
   const bool leapfrog = so.method == "leapfrog" || so.method == "leapfrog-rev";
   Real dt = so.fixed_dt;
-  if (!(dt > 0) && (leapfrog || so.cap_by_stability)) {
-    dt = so.cfl_safety * system.max_stable_dt(t0, y0, nullptr);
+  if (!(dt > 0)) {
+    // Capped adaptive runs and the leapfrog: the stable step (capped: a lower bound on the steps).
+    // Uncapped explicit runs: an estimate from the stability reach of the tables -- none of SUNDIALS
+    // 6.4.1 is stable beyond 6.3 CFL units (docs/time_integration.md), below kUncappedReach stable
+    // steps for a scheme's CFL number >= 0.2 -- not a bound (the stable step may grow).
+    constexpr Real kUncappedReach = 32;
+    const Real stable = system.max_stable_dt(t0, y0, nullptr);
+    dt = leapfrog || so.cap_by_stability ? so.cfl_safety * stable : kUncappedReach * stable;
     if (so.max_dt > 0) dt = std::min(dt, so.max_dt);
-    e.steps_at_least = !leapfrog;
+    e.steps_at_least = !leapfrog && so.cap_by_stability;
   }
   if (!(dt > 0) || !std::isfinite(dt)) return;
   e.first_step = dt;

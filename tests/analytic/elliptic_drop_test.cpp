@@ -36,3 +36,16 @@ TEST(EllipticDrop, SmallAmplitudeFrequencyIsSqrt2Omega) {
   EXPECT_NEAR(full.A / amp, 1.0, 1e-3);
   EXPECT_NEAR(full.a, 1.0, 1e-8);
 }
+
+// at(t) is a function of t alone: the kept grid state (later times continue from it) changes
+// no bit of any answer, whatever was asked before, forwards, backwards or with another step.
+TEST(EllipticDrop, TheAnswerDoesNotDependOnWhatWasAskedBefore) {
+  const EllipticDrop walked(1.0, 100.0, 100.0);
+  for (const Real t : {0.0, 1e-4, 2.5e-3, 2.5e-3, 0.0121, 0.05, 0.03, 0.1, 7e-6}) {
+    const EllipticDropState s = walked.at(t), fresh = EllipticDrop(1.0, 100.0, 100.0).at(t);
+    EXPECT_EQ(s.a, fresh.a) << t;
+    EXPECT_EQ(s.b, fresh.b) << t;
+    EXPECT_EQ(s.A, fresh.A) << t;
+    walked.at(0.02, 4e-4);  // another grid in between
+  }
+}

@@ -105,5 +105,49 @@ TEST(RunPython, RendersAFrameFromVtkSeriesWriter) {
             std::string::npos) << err;
 }
 
+// One Python process for several pictures: every job runs even after a failed one, the result
+// is false then, and the failed job is named.
+TEST(RunPythonBatch, EveryJobRunsAndAFailedOneIsNamed) {
+  test::TempDir dir;
+  {
+    CsvWriter csv(dir.path() / "diag.csv", {"t", "a", "b"});
+    for (int k = 0; k <= 20; ++k) csv.row({0.05 * k, 1.0 + k, 2.0 * k});
+  }
+  const std::string csv = (dir.path() / "diag.csv").string();
+  const auto png_a = dir.path() / "a.png", png_b = dir.path() / "b.png";
+  const auto chart = [&](const std::string& y, const std::filesystem::path& png) {
+    return PythonJob{"charts.py", {"--csv", csv + ":run", "--x", "t", "--y", y, "--styles=--", "--out", png.string()}};
+  };
+  ASSERT_TRUE(run_python_batch({chart("a", png_a), chart("b", png_b)}, false));
+  EXPECT_EQ(png_size(png_a), (std::pair<std::uint32_t, std::uint32_t>{960, 660}));
+  EXPECT_EQ(png_size(png_b), (std::pair<std::uint32_t, std::uint32_t>{960, 660}));
+  std::filesystem::remove(png_b);
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_python_batch({chart("no_such_column", png_a), chart("b", png_b)}, false));
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("no column 'no_such_column'"), std::string::npos) << err;
+  EXPECT_NE(err.find("batch.py: charts.py exited with status 2"), std::string::npos) << err;
+  EXPECT_NE(err.find("sphark: warning: vis/batch.py: exited with status 1"), std::string::npos) << err;
+  EXPECT_EQ(png_size(png_b), (std::pair<std::uint32_t, std::uint32_t>{960, 660}));  // the job after the failed one
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_python_batch({{"../charts.py", {}}}, false));  // only scripts of vis/
+  EXPECT_NE(::testing::internal::GetCapturedStderr().find("expected a script name of vis/"), std::string::npos);
+  EXPECT_TRUE(run_python_batch({}, false));  // nothing to draw: nothing started
+}
+
+// --styles: one matplotlib line style per line; more styles than lines is the usage error.
+TEST(RunPython, ChartStylesMustNotOutnumberTheLines) {
+  test::TempDir dir;
+  {
+    CsvWriter csv(dir.path() / "diag.csv", {"t", "a"});
+    for (int k = 0; k <= 5; ++k) csv.row({0.1 * k, 1.0 * k});
+  }
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_python("charts.py", {"--csv", (dir.path() / "diag.csv").string(), "--x", "t", "--y", "a",
+                                        "--styles=-,--", "--out", (dir.path() / "a.png").string()},
+                          false));
+  EXPECT_NE(::testing::internal::GetCapturedStderr().find("--styles: 2 styles for 1 lines"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sphark

@@ -70,24 +70,28 @@ TEST(ExampleRecord, RunJsonHoldsEveryOptionTheFilesAndTheOutcome) {
   EXPECT_EQ(options.as_object().size(), names.size());
   for (const auto& n : names) EXPECT_NE(options.find(n), nullptr) << n << " missing from run.json";
   EXPECT_EQ(options.find("amplitude")->as_number(), 50);
-  EXPECT_EQ(options.find("rtol")->as_number(), 1e-4);  // a default, recorded too
+  EXPECT_EQ(options.find("rtol")->as_number(), 1e-2);  // a default, recorded too
+  EXPECT_EQ(options.find("step-cap")->as_bool(), false);
   EXPECT_EQ(strings(*r.find("options_given")),
             (std::vector<std::string>{"out", "t-end", "output-every", "threads", "no-render", "amplitude", "spacing"}));
   EXPECT_EQ(r.find("threads")->as_number(), 1);
   EXPECT_EQ(r.find("outcome")->as_string(), "ok");
   EXPECT_EQ(r.find("reason"), nullptr);
   const std::vector<std::string> files = strings(*r.find("files"));
-  for (const char* expected : {"cleaned/diagnostics.csv", "cleaned/drop.pvd", "cleaned/drop_00002.vtp",
-                               "control/diagnostics.csv", "run.json", "summary.csv", "view.pvsm"})
+  for (const char* expected : {"seed_cleaned/diagnostics.csv", "seed_control/drop.pvd", "cleaned/diagnostics.csv",
+                               "cleaned/drop.pvd", "cleaned/drop_00002.vtp", "control/diagnostics.csv", "run.json",
+                               "summary.csv", "view.pvsm"})
     EXPECT_NE(std::find(files.begin(), files.end(), expected), files.end()) << expected;
   for (const auto& file : files) EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
   std::size_t on_disk = 0;
   for (const auto& e : fs::recursive_directory_iterator(out)) on_disk += e.is_regular_file();
   EXPECT_EQ(files.size(), on_disk);  // a fresh folder: every file in it was written by this run
-  // the view: cleaned | control, both coloured by pressure, every named file and array present
+  // the view: the seed's cleaned | control, delta-SPH's cleaned | control, coloured by pressure,
+  // every named file and array present
   const ParaViewStateRefs v = read_paraview_state(out / "view.pvsm");
-  EXPECT_EQ(v.files, (std::vector<std::string>{"cleaned/drop.pvd", "control/drop.pvd"}));
-  ASSERT_EQ(v.colourings.size(), 2u);
+  EXPECT_EQ(v.files, (std::vector<std::string>{"seed_cleaned/drop.pvd", "seed_control/drop.pvd", "cleaned/drop.pvd",
+                                               "control/drop.pvd"}));
+  ASSERT_EQ(v.colourings.size(), 4u);
   for (const auto& c : v.colourings) {
     EXPECT_EQ(c.array, "pressure");
     EXPECT_EQ(c.association, "points");
@@ -105,7 +109,7 @@ TEST(ExampleRecord, AReRunFromRunJsonIsBitIdenticalAndTheCommandLineOverridesIt)
                 dir.path()).exit_code, 0);
   const Finished again = run(bin, {"--config", (a / "run.json").string(), "--out", b.string()}, dir.path());
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  for (const char* run_dir : {"cleaned", "control"}) {
+  for (const char* run_dir : {"seed_cleaned", "seed_control", "cleaned", "control"}) {
     const std::string da = slurp(a / run_dir / "diagnostics.csv"), db = slurp(b / run_dir / "diagnostics.csv");
     EXPECT_GT(count(da, '\n'), 10u);
     EXPECT_EQ(da, db) << run_dir;  // bit for bit: every value is written with %.17g
@@ -155,8 +159,8 @@ TEST(ExampleRecord, AFailedAndAStoppedRunSaySoAndWhy) {
   const fs::path bin = binary("water_drop");
   TempDir dir;
   const fs::path failed = dir.path() / "failed";
-  const Finished f = run(bin, kTiny + std::vector<std::string>{"--out", failed.string(), "--cleaning", "on",
-                                                               "--inject-nan-at", "0.0015"}, dir.path());
+  const Finished f = run(bin, kTiny + std::vector<std::string>{"--out", failed.string(), "--scheme", "delta-sph",
+                                                               "--cleaning", "on", "--inject-nan-at", "0.0015"}, dir.path());
   ASSERT_EQ(f.exit_code, 3) << f.err;
   const Json rf = read_run_record(failed / "run.json");
   EXPECT_EQ(rf.find("outcome")->as_string(), "failed");
@@ -167,7 +171,7 @@ TEST(ExampleRecord, AFailedAndAStoppedRunSaySoAndWhy) {
   EXPECT_NE(std::find(files.begin(), files.end(), "cleaned/checkpoint.bin"), files.end());  // the last good state
   // SIGINT mid-run (1e5 leapfrog steps: surely mid-run)
   const fs::path stopped = dir.path() / "stopped";
-  const Spawned s = spawn(bin, {"--spacing", "0.2", "--no-render", "--threads", "1", "--cleaning", "on", "--stepper",
+  const Spawned s = spawn(bin, {"--spacing", "0.2", "--no-render", "--threads", "1", "--scheme", "delta-sph", "--cleaning", "on", "--stepper",
                                 "leapfrog", "--dt", "1e-5", "--t-end", "1", "--output-every", "0.01", "--out", stopped.string()},
                           dir.path());
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);

@@ -46,6 +46,10 @@ TEST(BadOptions, WaterDropRejectsEveryClassWithOneLineAndNoFiles) {
       {{"--stepper", "rk99"}, "--stepper: bad value 'rk99'"},                // unknown name
       {{"--kernel", "gauss"}, "--kernel: bad value 'gauss'"},                // unknown variant
       {{"--cleaning", "maybe"}, "--cleaning: bad value 'maybe'"},
+      {{"--scheme", "sph"}, "--scheme: bad value 'sph'"},
+      {{"--delta", "0"}, "--delta: bad value '0'"},  // no diffusion is --scheme seed
+      {{"--scheme", "seed", "--delta", "0.1"}, "--delta: --scheme seed has no density diffusion"},
+      {{"--step-cap", "sometimes"}, "--step-cap: bad value 'sometimes'"},
       {{"--initial-pressure", "hydrostatic"}, "--initial-pressure: bad value 'hydrostatic'"},
       {{"--frobnicate", "1"}, "--frobnicate"},                               // unknown option
       {{"--spacing", "0"}, "--spacing: bad value '0'"},                      // non-positive size
@@ -98,6 +102,7 @@ TEST(BadOptions, WaterDropRestartMustMatchTheCheckpoint) {
       {{"--restart", ckpt, "--delta", "0.1"}, "checkpoint has delta=0.05"},
       {{"--restart", ckpt, "--t-end", "0.0003"}, "--t-end: 0.0003 is not after the checkpoint time 0.0004"},
       {{"--restart", ckpt, "--cleaning", "off"}, "--cleaning: off contradicts the checkpoint (a cleaned run)"},
+      {{"--restart", ckpt, "--scheme", "seed"}, "--scheme: seed contradicts the checkpoint (a cleaned run)"},
       {{"--restart", ckpt, "--rtol", "-1"}, "--rtol: bad value '-1'"},
   };
   for (const auto& c : cases) expect_rejected(bin, c, dir, out);

@@ -23,7 +23,8 @@ using namespace sphark::test;
 namespace fs = std::filesystem;
 
 namespace {
-const std::vector<std::string> kTiny = {"--spacing", "0.2", "--cleaning", "on", "--no-render", "--threads", "1"};
+const std::vector<std::string> kTiny = {"--spacing", "0.2", "--scheme", "delta-sph", "--cleaning", "on", "--no-render",
+                                        "--threads", "1"};
 const std::vector<std::string> kLeapfrog = {"--stepper", "leapfrog", "--dt", "1e-5"};
 
 std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {

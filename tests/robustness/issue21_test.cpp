@@ -64,7 +64,7 @@ TEST(Issue21, ThreadsAboveTheCoresAreClampedWithAWarning) {
   // the same through OMP_NUM_THREADS (the default of --threads 0)
   TempDir dir;
   const Timed r = run_timed(require_example("water_drop"),
-                            {"--spacing", "0.25", "--t-end", "2e-4", "--cleaning", "on", "--no-render", "--out",
+                            {"--spacing", "0.25", "--t-end", "2e-4", "--scheme", "delta-sph", "--cleaning", "on", "--step-cap", "on", "--no-render", "--out",
                              (dir.path() / "o").string()},
                             dir.path(), 60, {{"OMP_NUM_THREADS", "100000"}});
   EXPECT_EQ(r.f.exit_code, 0) << r.f.err;
@@ -88,7 +88,7 @@ TEST(Issue21, AStepThatStaysBelowTheFloorEndsTheRunWithTheLastGoodState) {
   TempDir dir;
   const fs::path out = dir.path() / "out";
   const Timed r = run_timed(require_example("water_drop"),
-                            {"--amplitude", "1e10", "--spacing", "0.1", "--cleaning", "on", "--no-render", "--out",
+                            {"--amplitude", "1e10", "--spacing", "0.1", "--scheme", "delta-sph", "--cleaning", "on", "--step-cap", "on", "--no-render", "--out",
                              out.string()},
                             dir.path(), 60);
   std::printf("%s", r.f.err.c_str());
@@ -107,7 +107,7 @@ TEST(Issue21, ARunOfTinyStepsAnswersSigtermWithinASecond) {
   TempDir dir;
   const fs::path out = dir.path() / "out";
   const Spawned s = spawn(require_example("water_drop"),
-                          {"--amplitude", "1e7", "--spacing", "0.1", "--cleaning", "on", "--no-render", "--out",
+                          {"--amplitude", "1e7", "--spacing", "0.1", "--scheme", "delta-sph", "--cleaning", "on", "--step-cap", "on", "--no-render", "--out",
                            out.string()},
                           dir.path());
   const Timed r = signal_when(s, out / "cleaned" / "drop_00000.vtp", SIGTERM, std::chrono::milliseconds(300));

@@ -22,8 +22,11 @@ class EllipticDrop {
  public:
   EllipticDrop(Real radius, Real amplitude, Real omega) : R_(radius), A0_(amplitude), omega_(omega) {}
 
-  // State at time t, integrated with classical RK4 from t = 0 at steps of at most max_step
-  // (the error of the default is below 1e-12 relative for the seed's parameters).
+  // State at time t, integrated with classical RK4 from t = 0 on the grid t_k = k max_step, the
+  // last step ending at t (the error of the default is below 1e-12 relative for the seed's
+  // parameters). A function of (t, max_step) alone; the last grid state is kept, so a run that
+  // asks at increasing times costs one integration in all, not one from t = 0 per call (not
+  // thread-safe: one object per thread).
   EllipticDropState at(Real t, Real max_step = 1e-6) const;
 
   // Central pressure p0(t) / rho.
@@ -33,7 +36,15 @@ class EllipticDrop {
   void derivative(const Real y[3], Real dy[3]) const;
 
  private:
+  void rk4_step(Real y[3], Real dt) const;
+
+  struct GridState {
+    Real step = 0;  // the grid spacing of k and y (0: none yet)
+    long k = 0;     // y is the state at t_k = k step
+    Real y[3] = {0, 0, 0};
+  };
   Real R_, A0_, omega_;
+  mutable GridState grid_;
 };
 
 }  // namespace sphark

@@ -18,6 +18,17 @@ std::filesystem::path vis_dir();
 bool run_python(const std::string& script_relative_to_vis, const std::vector<std::string>& args,
                 bool needs_display, double timeout_seconds = 600);
 
+// One picture script of vis/ with its arguments, for run_python_batch().
+struct PythonJob {
+  std::string script;  // e.g. "charts.py"
+  std::vector<std::string> args;
+};
+
+// Every job in one Python process (vis/batch.py): matplotlib, VTK and xvfb-run start once for
+// all of them. Every job runs even if an earlier one failed; true iff all succeeded (a failed
+// job is one line on stderr, then the warning of run_python).
+bool run_python_batch(const std::vector<PythonJob>& jobs, bool needs_display, double timeout_seconds = 600);
+
 struct ProcessResult {
   bool ok = false;    // started and exited with status 0
   std::string error;  // otherwise why: "cannot start ...", "exited with status 2", ...

@@ -69,7 +69,7 @@ struct CostEstimate {
   std::optional<double> available;  // memory_available_bytes()
   double first_step = std::numeric_limits<double>::quiet_NaN();  // dt0
   double steps = std::numeric_limits<double>::quiet_NaN();
-  bool steps_at_least = false;  // adaptive ARKODE: dt0 is the cap
+  bool steps_at_least = false;  // adaptive ARKODE: first_step bounds every step (the cap, or an uncapped run's stability reach)
   double seconds = std::numeric_limits<double>::quiet_NaN();
   bool fits() const { return !available || bytes <= *available; }
   bool longer_than_a_day() const { return seconds > 86400; }

@@ -55,10 +55,13 @@ std::string scene_text(const WaterDropConfig& c);
 
 using DropResults = std::vector<std::pair<std::string, DropRunSummary>>;
 
-// <out>/summary.csv (one row per run) and, with a cleaned and a control run, their ratios.
+// <out>/summary.csv (one row per run) and, per scheme with a cleaned and a control run, their
+// ratios.
 void write_drop_summary(const std::filesystem::path& out, const DropResults& results);
 // Charts (paper Figs. 8-10 and the semi-axes against the exact ellipse) and rendered frames.
 // Frames were written every frame_every up to t_end.
 void make_drop_pictures(const std::filesystem::path& out, const DropResults& results, Real frame_every, Real t_end);
+// "seed's WCSPH, cleaned", "delta-SPH, control": a run's label in legends, titles and summaries.
+std::string run_legend(const std::string& run);
 
 }  // namespace sphark
