@@ -22,6 +22,10 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
   p.add("--dt", &o.dt, "fixed time step, 0 = adaptive", NonNegative{});
   p.add_switch("--step-cap", &o.step_cap,
                "adaptive steps also bounded by the scheme's stable (CFL) step; off: by the error control alone");
+  p.add("--max-dt", &o.max_dt, "upper bound on every step, 0 = none (the top step of leapfrog-blocks)", NonNegative{});
+  p.add("--mri-ratio", &o.mri_ratio, "--stepper mri-<table>: slow step / fast step", Positive{});
+  p.add("--mri-fast-table", &o.mri_fast_table, "--stepper mri-<table>: the fast integrator's ERK table",
+        OneOf{erk_table_names()});
   p.add("--output-every", &o.output_every,
         "simulated time between output frames, 0 = first and last only", NonNegative{});
   p.add("--threads", &o.threads, "OpenMP threads, 0 = OpenMP default", NonNegative{});
@@ -39,6 +43,8 @@ std::vector<std::string> core_stepper_names() {
   names.push_back("ark-imex");
   names.push_back("leapfrog");
   names.push_back("leapfrog-rev");
+  names.push_back("leapfrog-blocks");
+  for (const std::string& table : mri_table_names()) names.push_back("mri-" + table);
   return names;
 }
 
@@ -49,6 +55,9 @@ StepperOptions stepper_options(const CoreOptions& o) {
   s.atol = {o.atol};
   s.fixed_dt = o.dt;
   s.cap_by_stability = o.step_cap;
+  s.max_dt = o.max_dt;
+  s.mri_ratio = o.mri_ratio;
+  s.mri_fast_table = o.mri_fast_table;
   return s;
 }
 

@@ -78,21 +78,37 @@ int GuardedSystem::check(Real t, const Real* out, std::size_t n, const char* wha
   return bad.empty() ? 0 : fail(t, std::string("non-finite ") + what, bad);
 }
 
-int GuardedSystem::rhs(Real t, const Real* y, Real* ydot) {
+int GuardedSystem::check_state(Real t, const Real* y) {
   own_error_ = false;
   const StateLayout* layout = inner_.state_layout();
   if (layout) {
     if (const std::vector<std::size_t> bad = nonphysical_entries(*layout, y); !bad.empty())
       return fail(t, "non-finite or non-physical state", bad);
-  } else if (const int r = check(t, y, size(), "state")) {
-    return r;
+    return 0;
   }
-  const int r = inner_.rhs(t, y, ydot);
-  if (r != 0) return r;
+  return check(t, y, size(), "state");
+}
+
+int GuardedSystem::check_derivative(Real t, Real* ydot) {
+  const StateLayout* layout = inner_.state_layout();
   if (t >= inject_from_)  // particle 0's velocity derivative (or the first state entry)
     ydot[layout && layout->has(Field::Velocity) ? layout->offset(Field::Velocity) : 0] =
         std::numeric_limits<Real>::quiet_NaN();
   return check(t, ydot, size(), "time derivative");
+}
+
+int GuardedSystem::rhs(Real t, const Real* y, Real* ydot) {
+  if (const int r = check_state(t, y)) return r;
+  particle_evals_ += static_cast<long>(inner_.num_particles());  // issue #17: the unit of work
+  const int r = inner_.rhs(t, y, ydot);
+  return r != 0 ? r : check_derivative(t, ydot);
+}
+
+int GuardedSystem::rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) {
+  if (const int r = check_state(t, y)) return r;
+  particle_evals_ += static_cast<long>(active.size());
+  const int r = inner_.rhs_subset(t, y, active, ydot);
+  return r != 0 ? r : check_derivative(t, ydot);
 }
 
 int GuardedSystem::stiff_diagonal(Real t, const Real* y, Real* c) {

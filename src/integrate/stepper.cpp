@@ -69,6 +69,39 @@ void validate_leapfrog(OdeSystem& system, const StepperOptions& o, Real t0, cons
           "needs fixed_dt, max_dt or a finite system max_stable_dt" + why);
 }
 
+// method "mri-<table>" (multirate, issue #17): the options MRIStep of SUNDIALS 6.4.1 needs.
+void validate_mri(const OdeSystem& system, const StepperOptions& o) {
+  const std::string table = o.method.substr(4);
+  require(o, mri_table_order(table) > 0, "method", o.method,
+          "unknown MRI coupling table (mri-ARKODE_MIS_KW3, mri-ARKODE_MRI_GARK_ERK33a, mri-ARKODE_MRI_GARK_ERK45a)");
+  require(o, o.fixed_dt > 0 || o.max_dt > 0, "method", o.method,
+          "MRIStep of SUNDIALS 6.4.1 takes fixed slow steps: set fixed_dt, or max_dt for power-of-two slow steps");
+  require(o, o.mri_slow_fraction > 0 && o.mri_slow_fraction <= 1, "mri_slow_fraction",
+          number_text(o.mri_slow_fraction), "must be in (0, 1]");
+  require(o, o.mri_ratio >= 1, "mri_ratio", std::to_string(o.mri_ratio), "must be >= 1");
+  require(o, is_erk(o.mri_fast_table), "mri_fast_table", o.mri_fast_table, "not an ERK table of SUNDIALS 6.4.1");
+  require(o, o.partition_hysteresis >= 0, "partition_hysteresis", number_text(o.partition_hysteresis), "must be >= 0");
+  require(o, system.supports_subsets(), "method", o.method,
+          "the system cannot evaluate particle subsets (OdeSystem::supports_subsets)");
+  require(o, system.num_roots() == 0, "method", o.method, "root finding is not supported by the multirate stepper");
+  require(o, !o.communicator.distributed(), "method", o.method, "the multirate stepper is serial only");
+}
+
+// "leapfrog-blocks" (issue #17): a position block, a top step, the subset interface.
+void validate_blocks(const OdeSystem& system, const StepperOptions& o) {
+  const std::size_t n = system.size(), np = system.position_size();
+  const std::size_t xp = system.position_offset(), vp = system.velocity_offset();
+  require(o, np > 0, "method", o.method, "the system declares no position block (position_size() == 0)");
+  require(o, !(xp + np > n || vp + np > n || (xp < vp + np && vp < xp + np)), "method", o.method,
+          "position/velocity blocks overlap or exceed the state size");
+  require(o, o.fixed_dt > 0 || o.max_dt > 0, "method", o.method, "needs the top step: set fixed_dt or max_dt");
+  require(o, o.partition_hysteresis >= 0, "partition_hysteresis", number_text(o.partition_hysteresis), "must be >= 0");
+  require(o, system.supports_subsets(), "method", o.method,
+          "the system cannot evaluate particle subsets (OdeSystem::supports_subsets)");
+  require(o, system.num_roots() == 0, "method", o.method, "root finding is not supported with block steps");
+  require(o, !o.communicator.distributed(), "method", o.method, "block steps are serial only");
+}
+
 }  // namespace
 
 // ARKODE 6.4.1 enum order (arkode/arkode_butcher_erk.h); names accepted by ERKStepSetTableName.
@@ -104,6 +137,14 @@ std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const Stepper
     validate_leapfrog(system, opts, t0, y0);
     return make_leapfrog_stepper(system, opts, t0, y0);
   }
+  if (opts.method == "leapfrog-blocks") {
+    validate_blocks(system, opts);
+    return make_block_leapfrog_stepper(system, opts, t0, y0);
+  }
+  if (opts.method.rfind("mri-", 0) == 0) {
+    validate_mri(system, opts);
+    return make_mri_stepper(system, opts, t0, y0);
+  }
   if (opts.method == "ark-imex") {
     require(opts, system.has_stiff_diagonal(), "method", opts.method,
             "the system has no stiff diagonal part (use an ERK table)");
@@ -112,7 +153,7 @@ std::unique_ptr<Stepper> make_validated_stepper(OdeSystem& system, const Stepper
     return make_imex_stepper(system, opts, t0, y0);
   }
   require(opts, is_erk(opts.method), "method", opts.method,
-          "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\" or \"leapfrog-rev\"");
+          "not an ERK table of SUNDIALS 6.4.1, \"ark-imex\", \"leapfrog\", \"leapfrog-rev\", \"leapfrog-blocks\" or \"mri-<table>\"");
   require(opts, opts.fixed_dt > 0 || erk_table_has_embedding(opts.method), "method", opts.method,
           "table has no embedding: adaptive steps impossible, set fixed_dt");
   return make_erk_stepper(system, opts, t0, y0);
@@ -127,7 +168,9 @@ std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& o
   guard->inject_nan_from(opts.inject_nan_from);
   auto inner = opts.communicator.distributed() ? detail::make_distributed_stepper(*guard, opts, t0, y0)
                                                : detail::make_validated_stepper(*guard, opts, t0, y0);
-  return std::make_unique<detail::WrapperOwningStepper>(std::move(guard), std::move(inner));
+  const GuardedSystem* counter = guard.get();
+  return std::make_unique<detail::WrapperOwningStepper>(std::move(guard), std::move(inner),
+                                                        [counter] { return counter->particle_evals(); });
 }
 
 void Stepper::resize(const Resized&) {
@@ -141,6 +184,20 @@ std::string describe(const StepperOptions& o) {
     if (o.fixed_dt > 0) s << "fixed dt=" << o.fixed_dt;
     else s << "dt=" << o.cfl_safety << " x max_stable_dt";
     if (o.fixed_dt <= 0 && o.max_dt > 0) s << ", max_dt=" << o.max_dt;
+    return s.str();
+  }
+  if (o.method == "leapfrog-blocks") {
+    s << "leapfrog KDK with power-of-two block steps, top dt=" << (o.fixed_dt > 0 ? o.fixed_dt : o.max_dt)
+      << ", levels from " << o.cfl_safety << " x particle_stable_dt, hysteresis " << o.partition_hysteresis;
+    return s.str();
+  }
+  if (o.method.rfind("mri-", 0) == 0) {
+    s << "MRIStep " << o.method.substr(4);
+    if (o.fixed_dt > 0) s << ", slow dt=" << o.fixed_dt << ", fast " << o.mri_fast_table << " dt=slow/" << o.mri_ratio;
+    else s << ", slow dt=max_dt/2^l (" << o.mri_slow_fraction << " of the particles slow), max_dt=" << o.max_dt
+           << ", fast " << o.mri_fast_table << " dt=slow/max(" << o.mri_ratio << ", 2^levels)";
+    s << ", levels from " << o.cfl_safety << " x particle_stable_dt, hysteresis " << o.partition_hysteresis
+      << ", max_steps=" << o.max_steps;
     return s.str();
   }
   if (o.method == "ark-imex") s << "ARKStep IMEX " << o.imex_table;
@@ -166,7 +223,11 @@ std::string format_stats(const StepperStats& st) {
   s << " err_test_fails=" << st.error_test_failures;
   if (st.rhs_evals_implicit > 0)
     s << " nonlin_fails=" << st.nonlinear_failures << " lin_solves=" << st.linear_solves;
-  s << " rhs_recoveries=" << st.rhs_recoveries << " last_dt=" << st.last_dt
+  s << " rhs_recoveries=" << st.rhs_recoveries << " particle_evals=" << st.particle_evals;
+  for (std::size_t l = 0; l < st.levels.size(); ++l)
+    s << " level" << l << "=(steps=" << st.levels[l].steps << " rhs_evals=" << st.levels[l].rhs_evals
+      << " particle_evals=" << st.levels[l].particle_evals << ")";
+  s << " last_dt=" << st.last_dt
     << " t=" << st.current_time;
   return s.str();
 }

@@ -1,5 +1,6 @@
 #pragma once
 // Constructors of the concrete steppers (options already validated by make_stepper).
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -14,6 +15,14 @@ std::unique_ptr<Stepper> make_imex_stepper(OdeSystem& system, const StepperOptio
 // True if name is one of the ARK IMEX pairs offered (ARK324L2SA, ARK436L2SA, ...).
 bool is_imex_pair(const std::string& name);
 
+// MRIStep (method "mri-<coupling table>"): multirate_stepper.hpp has its options.
+std::unique_ptr<Stepper> make_mri_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                          const Real* y0);
+
+// "leapfrog-blocks": KDK with individual power-of-two block steps (block_leapfrog_stepper.cpp).
+std::unique_ptr<Stepper> make_block_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                                     const Real* y0);
+
 std::unique_ptr<Stepper> make_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts,
                                                Real t0, const Real* y0);
 
@@ -21,11 +30,17 @@ std::unique_ptr<Stepper> make_leapfrog_stepper(OdeSystem& system, const StepperO
 // everything to the inner stepper; the wrapper outlives it.
 class WrapperOwningStepper final : public Stepper {
  public:
-  WrapperOwningStepper(std::unique_ptr<OdeSystem> wrapper, std::unique_ptr<Stepper> inner)
-      : wrapper_(std::move(wrapper)), inner_(std::move(inner)) {}
+  // particle_evals, when given, supplies StepperStats::particle_evals (the guard's count).
+  WrapperOwningStepper(std::unique_ptr<OdeSystem> wrapper, std::unique_ptr<Stepper> inner,
+                       std::function<long()> particle_evals = {})
+      : wrapper_(std::move(wrapper)), inner_(std::move(inner)), particle_evals_(std::move(particle_evals)) {}
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override { return inner_->advance(t_out, y, t); }
   AdvanceStatus step(Real t_out, Real* y, Real& t) override { return inner_->step(t_out, y, t); }
-  StepperStats stats() const override { return inner_->stats(); }
+  StepperStats stats() const override {
+    StepperStats s = inner_->stats();
+    if (particle_evals_) s.particle_evals = particle_evals_();
+    return s;
+  }
   std::string failure_reason() const override { return inner_->failure_reason(); }
   std::vector<Real> resume_data() const override { return inner_->resume_data(); }
   std::vector<int> roots_found() const override { return inner_->roots_found(); }
@@ -35,6 +50,7 @@ class WrapperOwningStepper final : public Stepper {
  private:
   std::unique_ptr<OdeSystem> wrapper_;  // declared first: destroyed after inner_
   std::unique_ptr<Stepper> inner_;
+  std::function<long()> particle_evals_;
 };
 
 // make_stepper after the option checks (collective in a distributed run), on `system` as given.

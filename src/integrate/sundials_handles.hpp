@@ -2,6 +2,7 @@
 // RAII holders for the SUNDIALS objects a stepper owns. Private to src/integrate/.
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
+#include <arkode/arkode_mristep.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
@@ -30,12 +31,20 @@ struct ErkMemDeleter {
 struct ArkMemDeleter {
   void operator()(void* mem) const { ARKStepFree(&mem); }
 };
+struct MriMemDeleter {
+  void operator()(void* mem) const { MRIStepFree(&mem); }
+};
+struct InnerStepperDeleter {
+  void operator()(MRIStepInnerStepper s) const { MRIStepInnerStepper_Free(&s); }
+};
 
 using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
 using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
 using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
 using ErkMemPtr = std::unique_ptr<void, ErkMemDeleter>;
 using ArkMemPtr = std::unique_ptr<void, ArkMemDeleter>;
+using MriMemPtr = std::unique_ptr<void, MriMemDeleter>;
+using InnerStepperPtr = std::unique_ptr<std::remove_pointer_t<MRIStepInnerStepper>, InnerStepperDeleter>;
 
 // The context of a stepper: with the MPI communicator of a distributed run, else none.
 inline ContextPtr make_context(const Communicator& comm = {}) {

@@ -1,5 +1,6 @@
 #include "sphark/run/time_loop.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,12 +30,12 @@ Real snap_to_grid(Real t_end, Real every) {
 // Counts of the stepper(s) before a restart, kept in the checkpoint under these names.
 struct CountBase {
   Real steps = 0, attempts = 0, rhs_evals = 0, rhs_evals_implicit = 0, error_test_failures = 0,
-       nonlinear_failures = 0, rhs_recoveries = 0, linear_solves = 0;
+       nonlinear_failures = 0, rhs_recoveries = 0, linear_solves = 0, particle_evals = 0;
   std::vector<std::pair<const char*, Real*>> bind() {
     return {{"steps", &steps}, {"attempts", &attempts}, {"rhs_evals", &rhs_evals},
             {"rhs_evals_implicit", &rhs_evals_implicit}, {"error_test_failures", &error_test_failures},
             {"nonlinear_failures", &nonlinear_failures}, {"rhs_recoveries", &rhs_recoveries},
-            {"linear_solves", &linear_solves}};
+            {"linear_solves", &linear_solves}, {"particle_evals", &particle_evals}};
   }
   StepperStats total(StepperStats st) const {
     st.steps += static_cast<long>(steps);
@@ -45,12 +46,13 @@ struct CountBase {
     st.nonlinear_failures += static_cast<long>(nonlinear_failures);
     st.rhs_recoveries += static_cast<long>(rhs_recoveries);
     st.linear_solves += static_cast<long>(linear_solves);
+    st.particle_evals += static_cast<long>(particle_evals);
     return st;
   }
   void set(const StepperStats& st) {
     steps = st.steps, attempts = st.attempts, rhs_evals = st.rhs_evals, rhs_evals_implicit = st.rhs_evals_implicit;
     error_test_failures = st.error_test_failures, nonlinear_failures = st.nonlinear_failures;
-    rhs_recoveries = st.rhs_recoveries, linear_solves = st.linear_solves;
+    rhs_recoveries = st.rhs_recoveries, linear_solves = st.linear_solves, particle_evals = st.particle_evals;
   }
 };
 
@@ -145,7 +147,14 @@ void TimeLoop::restore(const Checkpoint& c) {
   if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
   y_ = c.y;
   t_ = c.t;
-  for (auto& [name, ptr] : binds_) *ptr = c.scalar(name);
+  for (auto& [name, ptr] : binds_) {
+    // particle_evals (issue #17) is newer than the other counts: a checkpoint without it counts
+    // from the restart on.
+    const bool optional = name == "particle_evals";
+    const bool present = !optional || std::any_of(c.scalars.begin(), c.scalars.end(),
+                                                  [&](const auto& s) { return s.first == name; });
+    *ptr = present ? c.scalar(name) : 0;
+  }
   // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
   // new grid from the checkpoint time on.
   if (c.scalar("sample_every") != s_.sample_every || !(sample_ * s_.sample_every > t_))  // (the latter: a corrupt index)

@@ -212,11 +212,14 @@ TEST(Options, CommaSeparatedLists) {
 TEST(CoreOptions, StepperNamesAndMapping) {
   const auto names = core_stepper_names();
   const auto erk = erk_table_names();
-  ASSERT_EQ(names.size(), erk.size() + 3);
+  const auto mri = mri_table_names();
+  ASSERT_EQ(names.size(), erk.size() + 4 + mri.size());
   EXPECT_TRUE(std::equal(erk.begin(), erk.end(), names.begin()));
   EXPECT_EQ(names[erk.size()], "ark-imex");
   EXPECT_EQ(names[erk.size() + 1], "leapfrog");
   EXPECT_EQ(names[erk.size() + 2], "leapfrog-rev");
+  EXPECT_EQ(names[erk.size() + 3], "leapfrog-blocks");
+  for (std::size_t i = 0; i < mri.size(); ++i) EXPECT_EQ(names[erk.size() + 4 + i], "mri-" + mri[i]);
   // The default --stepper is StepperOptions' default method, and a valid name.
   CoreOptions o;
   EXPECT_EQ(o.stepper, StepperOptions{}.method);
@@ -230,6 +233,14 @@ TEST(CoreOptions, StepperNamesAndMapping) {
   EXPECT_EQ(s.rtol, 1e-8);
   EXPECT_EQ(s.atol, std::vector<Real>{1e-12});
   EXPECT_EQ(s.fixed_dt, 0.001);
+  const char* mri_argv[] = {"x", "--stepper", "mri-ARKODE_MRI_GARK_ERK45a", "--mri-ratio", "16",
+                            "--mri-fast-table", "ARKODE_DORMAND_PRINCE_7_4_5", "--max-dt", "0.5"};
+  ASSERT_EQ(p.parse(9, mri_argv), ParseStatus::ok);
+  const StepperOptions m = stepper_options(o);
+  EXPECT_EQ(m.method, "mri-ARKODE_MRI_GARK_ERK45a");
+  EXPECT_EQ(m.mri_ratio, 16);
+  EXPECT_EQ(m.mri_fast_table, "ARKODE_DORMAND_PRINCE_7_4_5");
+  EXPECT_EQ(m.max_dt, 0.5);
 }
 
 TEST(Options, ProgrammerErrorsThrow) {

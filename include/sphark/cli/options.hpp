@@ -168,21 +168,28 @@ struct CoreOptions {
   bool render = true;                 // render PNGs at the end (--no-render turns off)
   bool profile = false;               // --profile: print the wall-time split (core/profile.hpp)
   bool step_cap = true;               // adaptive steps also bounded by the scheme's CFL step (--step-cap)
+  // Multirate (issue #17): --max-dt (every method's step bound; the top step of leapfrog-blocks
+  // and of the power-of-two MRIStep levels when --dt is 0), --mri-ratio and --mri-fast-table
+  // (--stepper mri-<table>).
+  Real max_dt = 0;
+  int mri_ratio = 4;
+  std::string mri_fast_table = "ARKODE_ZONNEVELD_5_3_4";
 };
 
-// Registers --out, --t-end, --stepper, --rtol, --atol, --dt, --step-cap, --output-every, --threads,
-// --no-render, --profile with the current values of `o` as defaults. `steppers` is the list of valid
+// Registers --out, --t-end, --stepper, --rtol, --atol, --dt, --step-cap, --max-dt, --mri-ratio,
+// --mri-fast-table, --output-every, --threads, --no-render, --profile with the current values of
+// `o` as defaults. `steppers` is the list of valid
 // --stepper names (it lives in integrate/); o.stepper must be one of them.
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers);
 // The same with core_stepper_names().
 void add_core_options(OptionParser& p, CoreOptions& o);
 
 // Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog",
-// "leapfrog-rev".
+// "leapfrog-rev", "leapfrog-blocks", "mri-<table>" (mri_table_names()).
 std::vector<std::string> core_stepper_names();
 
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt,
-// cap_by_stability = step_cap.
+// cap_by_stability = step_cap, max_dt, mri_ratio, mri_fast_table.
 StepperOptions stepper_options(const CoreOptions& o);
 // The same for one run of `system`: when --stepper ark-imex meets a run without a stiff part
 // (e.g. no psi damping), says so in one line on stderr (unless `program` is empty) and uses

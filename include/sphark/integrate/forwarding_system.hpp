@@ -23,6 +23,15 @@ class ForwardingSystem : public OdeSystem {
   int num_roots() const override { return inner_.num_roots(); }
   int roots(Real t, const Real* y, Real* g) override { return inner_.roots(t, y, g); }
   std::string last_error() const override { return inner_.last_error(); }
+  std::size_t num_particles() const override { return inner_.num_particles(); }
+  std::vector<std::size_t> entry_particles() const override { return inner_.entry_particles(); }
+  bool supports_subsets() const override { return inner_.supports_subsets(); }
+  int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
+    return inner_.rhs_subset(t, y, active, ydot);
+  }
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
+    return inner_.particle_stable_dt(t, y, ydot, dt);
+  }
 
  protected:
   OdeSystem& inner_;

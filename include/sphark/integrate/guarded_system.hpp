@@ -37,19 +37,27 @@ class GuardedSystem final : public ForwardingSystem {
   void inject_nan_from(Real t) { inject_from_ = t; }
 
   int rhs(Real t, const Real* y, Real* ydot) override;
+  // Guarded like rhs(); counts active.size() particle evaluations.
+  int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override;
   int stiff_diagonal(Real t, const Real* y, Real* c) override;
   std::string last_error() const override { return own_error_ ? error_ : inner_.last_error(); }
 
   long guarded_failures() const { return failures_; }
+  // Particles whose derivatives the inner system was asked for: num_particles() per rhs(), the
+  // active set's size per rhs_subset() (StepperStats::particle_evals; issue #17).
+  long particle_evals() const { return particle_evals_; }
 
  private:
   int fail(Real t, const std::string& what, const std::vector<std::size_t>& entries);
   int check(Real t, const Real* out, std::size_t n, const char* what);
+  int check_state(Real t, const Real* y);
+  int check_derivative(Real t, Real* ydot);
 
   Real inject_from_ = std::numeric_limits<Real>::infinity();
   bool own_error_ = false;
   std::string error_;
   long failures_ = 0;
+  long particle_evals_ = 0;
 };
 
 }  // namespace sphark

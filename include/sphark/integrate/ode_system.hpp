@@ -17,7 +17,10 @@
 // failures naming the particles concerned, so a scheme does not check them itself.
 #include <cstddef>
 #include <limits>
+#include <span>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sphark/core/types.hpp"
 
@@ -66,6 +69,36 @@ class OdeSystem {
 
   // Human-readable reason of the last non-zero return (for the run summary).
   virtual std::string last_error() const { return {}; }
+
+  // --- Particles: the unit of work (StepperStats::particle_evals) and of multirate stepping.
+  // Particles are numbered 0 .. num_particles()-1, species after species in layout order.
+  // Default: every particle of the layout; a plain ODE without a layout is one particle.
+  virtual std::size_t num_particles() const;
+
+  // The particle owning each state entry (size() entries), for steppers that advance particles
+  // by steps of their own (block steps). Default: from the layout (species after species); a
+  // plain ODE's entries all belong to its one particle.
+  virtual std::vector<std::size_t> entry_particles() const;
+
+  // Multirate (issue #17): true if rhs_subset() and particle_stable_dt() are implemented.
+  virtual bool supports_subsets() const { return false; }
+  // Derivatives of the particles `active` (ascending, unique) at (t, y): every entry of an active
+  // particle receives f(t, y) for that entry, computed against every neighbour (active or not);
+  // every other entry of ydot is set to 0, so that rhs_subset(A) + rhs_subset(complement of A)
+  // == rhs() (up to the round-off of the sum). Work proportional to the active set where the
+  // scheme allows it. A function of (t, y, active) alone, like every callback (see above).
+  // Return codes as rhs(). Default: throws std::logic_error (not supported).
+  virtual int rhs_subset(Real /*t*/, const Real* /*y*/, std::span<const std::size_t> /*active*/,
+                         Real* /*ydot*/) {
+    throw std::logic_error("rhs_subset: this system cannot evaluate a subset of its particles");
+  }
+  // Each particle's own largest stable step at (t, y) (num_particles() entries in dt): the
+  // per-particle analogue of max_stable_dt, with the same ydot convention (f(t, y) or the
+  // stepper's approximation of it, or null: derived from y); +inf: no limit. 0 success,
+  // non-zero failure (last_error() says why). Default: throws std::logic_error (not supported).
+  virtual int particle_stable_dt(Real /*t*/, const Real* /*y*/, const Real* /*ydot*/, Real* /*dt*/) {
+    throw std::logic_error("particle_stable_dt: this system reports no per-particle stable steps");
+  }
 };
 
 }  // namespace sphark

@@ -109,6 +109,10 @@ std::unique_ptr<Stepper> make_stepper(OdeSystem& system, const StepperOptions& o
 
 // Every explicit Butcher table of SUNDIALS 6.4.1, in ARKODE's enum order.
 std::vector<std::string> erk_table_names();
+// The explicit MRI coupling tables of SUNDIALS 6.4.1 (ARKODE_MIS_KW3, ARKODE_MRI_GARK_ERK33a,
+// ARKODE_MRI_GARK_ERK45a): method "mri-<name>" (multirate, issue #17), and their orders.
+std::vector<std::string> mri_table_names();
+int mri_table_order(const std::string& name);  // 0 for an unknown name
 // True if the table has an embedding (needed for adaptive steps; otherwise fixed_dt is required).
 bool erk_table_has_embedding(const std::string& name);
 

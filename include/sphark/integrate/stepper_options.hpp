@@ -13,7 +13,8 @@ namespace sphark {
 inline constexpr int kStepsBelowFloor = 100;
 
 struct StepperOptions {
-  // Any explicit Butcher table of SUNDIALS 6.4.1 (see erk_table_names()), "ark-imex" or "leapfrog".
+  // Any explicit Butcher table of SUNDIALS 6.4.1 (see erk_table_names()), "ark-imex", "leapfrog"
+  // or "mri-<MRI coupling table>" (multirate, see mri_table_names() in stepper.hpp).
   std::string method = "ARKODE_DORMAND_PRINCE_7_4_5";
   Real rtol = 1e-6;
   // Absolute tolerance: one value per state entry, or a single value for all; empty -> 1e-9.
@@ -58,6 +59,21 @@ struct StepperOptions {
   // ARK IMEX pair of ARKODE 6.4.1: ARK324L2SA (order 3), ARK436L2SA (4), ARK437L2SA (4),
   // ARK548L2SA (5), ARK548L2SAb (5).
   std::string imex_table = "ARK436L2SA";
+  // Multirate (issue #17), method "mri-<coupling table>" (mri_table_names()), fast integrator
+  // an explicit ARKStep with mri_fast_table (any ERK table, see erk_table_names()). MRIStep of
+  // SUNDIALS 6.4.1 takes fixed slow steps; repartitioned before every slow step:
+  //  - fixed_dt > 0: the slow step is fixed_dt, the fast step fixed_dt / mri_ratio; particles
+  //    whose stable step (x cfl_safety) is below fixed_dt are fast;
+  //  - else max_dt > 0: the particles are binned on the power-of-two levels of max_dt; the slow
+  //    step is the level holding (with the shallower ones) mri_slow_fraction of the particles,
+  //    the deeper ones are fast, the fast step is the deepest level's (at least slow / mri_ratio);
+  //    MRIStep restarts when these steps change.
+  // A particle moves to a longer step only when its stable step exceeds it by the factor
+  // (1 + partition_hysteresis) (also the block steps of "leapfrog-blocks").
+  int mri_ratio = 4;
+  std::string mri_fast_table = "ARKODE_ZONNEVELD_5_3_4";
+  Real mri_slow_fraction = 0.9;
+  Real partition_hysteresis = 0.25;
   // Distributed run: the ranks that each hold a part of the state (system.size() is then the
   // local length, every rank passes the same options). ARKODE runs on SUNDIALS' parallel
   // vectors (global norms), and the system's return codes, max_stable_dt (min), root functions
@@ -76,6 +92,13 @@ struct StepperOptions {
   std::vector<ReduceOp> root_reduction;
 };
 
+// One level of a multirate stepper (MRIStep: 0 slow, 1 fast; block steps: 0 the longest step).
+struct LevelStats {
+  long steps = 0;           // steps taken at this level
+  long rhs_evals = 0;       // right-hand-side (subset) evaluations of this level's particles
+  long particle_evals = 0;  // Σ over those evaluations of the particles evaluated
+};
+
 struct StepperStats {
   long steps = 0;                // accepted steps
   long attempts = 0;             // step attempts (accepted + rejected + retried)
@@ -85,6 +108,10 @@ struct StepperStats {
   long nonlinear_failures = 0;   // nonlinear solver convergence failures (IMEX only)
   long rhs_recoveries = 0;       // restarts with a smaller step after a recoverable RHS failure
   long linear_solves = 0;        // custom diagonal linear solves (IMEX only)
+  // Σ over RHS calls of the particles whose derivatives were computed (OdeSystem::num_particles()
+  // per full RHS call, the active set per subset call): the unit of work of issue #17.
+  long particle_evals = 0;
+  std::vector<LevelStats> levels;  // multirate steppers only (empty for global steppers)
   Real last_dt = 0;              // size of the last step taken
   Real current_time = 0;         // time reached by the stepper
 };

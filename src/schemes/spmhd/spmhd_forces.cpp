@@ -133,7 +133,7 @@ PairRow<D, K> pair_row_in_use() {
 }  // namespace
 
 template <int D, class K>
-void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
+void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<std::uint32_t>* only) {
   ScopedPhase timer(Phase::Forces);
   pair_loop_arrays(y);
   const bool evolve = opt_.evolve_particles, induction = opt_.field == FieldRepresentation::MagneticField;
@@ -160,8 +160,10 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
 #pragma omp parallel reduction(+ : pairs)
   {
     std::uint32_t* inside = row_scratch_.data() + room * static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t rows = only ? only->size() : n_;
 #pragma omp for schedule(dynamic, 64)
-    for (std::size_t a = 0; a < n_; ++a) {
+    for (std::size_t i = 0; i < rows; ++i) {
+      const std::size_t a = only ? (*only)[i] : i;
       const PairSums<D> sums = row(in, a, inside);
       pairs += sums.pairs;
       const ParticleA<D> pa{a, h_[a], rho_[a], Eigen::Map<const Vec3>(&B_[3 * a]),
@@ -175,7 +177,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot) {
 
 #define SPHARK_SPMHD_FORCES(D, K)                                                 \
   template void SpmhdScheme<D, K>::pair_loop_arrays(const Real*);                 \
-  template void SpmhdScheme<D, K>::force_pass(const Real*, Real*);
+  template void SpmhdScheme<D, K>::force_pass(const Real*, Real*, const std::vector<std::uint32_t>*);
 #define SPHARK_SPMHD_FORCES_2D_3D(K) SPHARK_SPMHD_FORCES(2, K<2>) SPHARK_SPMHD_FORCES(3, K<3>)
 SPHARK_KERNELS(SPHARK_SPMHD_FORCES_2D_3D)
 #undef SPHARK_SPMHD_FORCES_2D_3D

@@ -37,7 +37,7 @@ void SpmhdScheme<D, K>::gravitational_zeta() {
 }
 
 template <int D, class K>
-void SpmhdScheme<D, K>::gravity_pass(Real* ydot) {
+void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only) {
   if constexpr (D == 3) {
     ScopedPhase timer(Phase::Forces);
     const GravitySources src{x_.data(), ms_.data(), h_.data(), n_};
@@ -47,8 +47,10 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot) {
     const Real* x = x_.data();
     Real* dv_dt = ydot + layout_.offset(Field::Velocity);
     const Real G = opt_.G;
+    const std::size_t rows = only ? only->size() : n_;
 #pragma omp parallel for schedule(dynamic, 64)
-    for (std::size_t a = 0; a < n_; ++a) {
+    for (std::size_t i = 0; i < rows; ++i) {
+      const std::size_t a = only ? (*only)[i] : i;
       const Real ha = h_[a];
       Vec<3> acc = Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * a);
       for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
@@ -80,7 +82,7 @@ Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
 
 #define SPHARK_SPMHD_GRAVITY(D, K)                          \
   template void SpmhdScheme<D, K>::gravitational_zeta();   \
-  template void SpmhdScheme<D, K>::gravity_pass(Real*);    \
+  template void SpmhdScheme<D, K>::gravity_pass(Real*, const std::vector<std::uint32_t>*); \
   template Real SpmhdScheme<D, K>::force_time_step(const Real*) const; \
   template Real SpmhdScheme<D, K>::force_step(std::size_t, const Real*) const;
 #define SPHARK_SPMHD_GRAVITY_2D_3D(K) SPHARK_SPMHD_GRAVITY(2, K<2>) SPHARK_SPMHD_GRAVITY(3, K<3>)

@@ -67,6 +67,18 @@ class SpmhdScheme final : public OdeSystem {
   int stable_steps(Real t, const Real* y, const Real* ydot, std::vector<Real>& courant, std::vector<Real>& force) noexcept;
   std::string last_error() const override { return error_; }
 
+  // Multirate (issue #17; src/schemes/spmhd/spmhd_subsets.cpp), for moving particles: the
+  // derivatives of the particles `active` only (gas, then sinks: the layout's particle order),
+  // each against all its neighbours. The pair loops (hydrodynamics, MHD, cleaning, gravity's
+  // grad-h term) run over the active gas only; density and h (summation, memoised on the
+  // positions), the gravity tree and the sink forces are computed for all and kept for the
+  // active particles. particle_stable_dt: min(Courant, force criterion) of each gas particle
+  // (stable_steps), capped at 4 x that of any neighbour within the kernel support (Saitoh &
+  // Makino 2009), +inf for sinks.
+  bool supports_subsets() const override { return opt_.evolve_particles; }
+  int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override;
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override;
+
   // Number of RHS evaluations so far.
   long rhs_evaluations() const { return rhs_calls_; }
   // Number of neighbour-list builds so far (Verlet reuse: far fewer than RHS evaluations).
@@ -140,8 +152,9 @@ class SpmhdScheme final : public OdeSystem {
   DensityStats solve_density(const Real* x);  // h_[i] <= list_h_served_[i]; sets list_h_needed_
   void euler_potential_field(const Real* x, const Real* alpha);
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
-  void force_pass(const Real* y, Real* ydot);      // src/schemes/spmhd/spmhd_forces.cpp
-  void gravity_pass(Real* ydot);                   // src/schemes/spmhd/spmhd_gravity.cpp
+  // The pair loops over the slots `only` (ascending), or all slots when null.
+  void force_pass(const Real* y, Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_forces.cpp
+  void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
   void gravitational_zeta();                       // zeta_a / Omega_a of the grad-h term
@@ -178,6 +191,10 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
   std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
   std::vector<Real> scratch_;
+  std::vector<Real> subset_scratch_;           // rhs_subset: the sink forces of all particles
+  std::vector<std::uint32_t> active_slots_;    // rhs_subset: the active gas particles' slots
+  std::vector<std::uint32_t> slot_of_;         // rhs_subset: particle -> slot
+  std::vector<Real> courant_steps_, force_steps_;  // particle_stable_dt
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
   long evaluated_version_ = -1;
   // Per-particle factors of the pair loop (init): one record per particle of what its neighbours

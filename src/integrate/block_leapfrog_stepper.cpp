@@ -1,0 +1,379 @@
+// "leapfrog-blocks": kick-drift-kick with individual power-of-two block steps, Phantom style
+// (Price et al. 2018, PASA 35 e031, §2.3.4; issue #17). One top step T (fixed_dt, else max_dt,
+// shortened to land on t_out) is one cycle; particle i steps by T / 2^l_i, its level from its
+// own stable step (OdeSystem::particle_stable_dt x cfl_safety, LevelPartition with hysteresis).
+// Time inside a cycle counts in ticks of T / 2^kMaxLevel. With w every entry except positions:
+//   start of i's step:  w_i += dt_i/2 ẇ_i                       (kick, with the last ẇ_i)
+//   every event:        x += (t_next - t) v                     (drift of ALL particles)
+//   end of i's step:    ẇ_i = f_i(t, x, w*) for the active set  (OdeSystem::rhs_subset)
+//                       w_i += dt_i/2 ẇ_i                       (kick)
+// Wake-up (the time-step limiter of Saitoh & Makino 2009, ApJ 697 L99, as Phantom's): at every
+// event a particle whose stable step (at the predicted state) has fallen below its current step
+// ends that step early, at the event: its drift and start kick are cut back to the elapsed part
+// e of the step (x -= e (dt_i - e)/2 ẇ_old, w -= (dt_i - e)/2 ẇ_old), it is evaluated with the
+// ending particles and kicked by e/2 ẇ_new, then binned afresh (a system that wants neighbours'
+// steps to bound each other folds that into particle_stable_dt).
+// w* predicts every particle's w to the event time from its last kick: w_j + (t - t_mid_j) ẇ_j,
+// t_mid_j the middle of j's current step (for an active particle: the leapfrog's predictor
+// w_half + dt/2 ẇ_n, as in "leapfrog"). An ending particle takes a new level at once if it
+// needs a shorter step, a longer one only where that step's grid aligns with the current tick.
+// All levels meet at the end of the cycle; there (t, y) is synchronised and returned.
+//
+// With one level for all particles this is the global "leapfrog" KDK. Across levels, linear
+// momentum is conserved only to the time-stepping error, not to round-off: a pair force is
+// sampled at different times for its two particles (the usual individual-step scheme;
+// Pelupessy, Jänes & Portegies Zwart 2012, New Astron. 17, 711, build momentum-conserving
+// ones by splitting the pair interactions).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+
+#include "sphark/core/profile.hpp"
+#include "sphark/integrate/callback_errors.hpp"
+#include "sphark/integrate/level_partition.hpp"
+#include "steppers.hpp"
+
+namespace sphark::detail {
+namespace {
+
+constexpr int kMaxLevel = 30;  // at most 2^30 substeps per top step
+constexpr std::int64_t kTicks = std::int64_t(1) << kMaxLevel;
+
+std::string at_time(Real t) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", t);
+  return buf;
+}
+
+struct CycleFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+struct CycleInterrupted {};  // StepperOptions::interrupt said so
+
+class BlockLeapfrogStepper final : public Stepper {
+ public:
+  BlockLeapfrogStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0);
+  AdvanceStatus advance(Real t_out, Real* y, Real& t) override;
+  AdvanceStatus step(Real t_out, Real* y, Real& t) override;
+  StepperStats stats() const override;
+  std::string failure_reason() const override { return failure_; }
+  std::vector<int> roots_found() const override { return {}; }
+  // The derivative of the next kicks (FSAL), each particle's level, and whether the next cycle
+  // bins afresh: a restart at (t, y) with them takes this run's steps bit for bit.
+  std::vector<Real> resume_data() const override;
+  // Between cycles (all particles synchronised): the new state at t_; the next kicks use
+  // `carried` (the derivative moved with its entries) or the RHS at the new state; every particle
+  // is binned afresh at the next cycle.
+  void resize(const Resized& state) override;
+  std::vector<Real> carried_data() const override { return failed_ ? std::vector<Real>{} : dy_; }
+
+ private:
+  void index_entries();
+  std::int64_t length(int level) const { return kTicks >> level; }
+  void cycle(Real top, Real t_end);
+  void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
+  void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
+  std::vector<std::size_t> ending_at(std::int64_t tick) const;
+  void predict(std::int64_t tick);
+  std::vector<std::size_t> woken_at(Real t, std::int64_t tick, const std::vector<std::size_t>& ending);
+  void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
+  void evaluate(Real t, const std::vector<std::size_t>& active);
+  void count(const std::vector<std::size_t>& active);
+
+  OdeSystem& system_;
+  const StepperOptions opts_;
+  const Real top_;  // the top step: fixed_dt, else max_dt
+  std::size_t n_, np_, xp_, vp_;
+  std::vector<std::size_t> owner_;                 // entry -> particle
+  std::vector<std::vector<std::size_t>> entries_;  // particle -> its kicked entries (not x)
+  Real t_;
+  std::vector<Real> y_, dy_;  // synchronised state at t_ and its derivative (FSAL)
+  std::vector<Real> w_, eval_, out_, stable_;
+  std::vector<int> level_;
+  std::vector<std::int64_t> start_;  // tick at which each particle's current step began
+  LevelPartition bins_;
+  Real tick_dt_ = 0;
+  bool fresh_ = true;  // the next cycle bins afresh (first cycle, or a new top step)
+  std::vector<LevelStats> level_stats_;
+  long events_ = 0, rhs_evals_ = 1, wakeups_ = 0;
+  std::vector<Real> old_dy_;  // the woken particles' derivatives before their early evaluation
+  Real last_dt_ = 0;
+  bool failed_ = false;
+  std::string failure_;
+};
+
+BlockLeapfrogStepper::BlockLeapfrogStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0)
+    : system_(system), opts_(opts), top_(opts.fixed_dt > 0 ? opts.fixed_dt : opts.max_dt), n_(system.size()),
+      np_(system.position_size()), xp_(system.position_offset()), vp_(system.velocity_offset()),
+      owner_(system.entry_particles()), entries_(system.num_particles()), t_(t0), y_(y0, y0 + n_), dy_(n_),
+      level_(system.num_particles(), 0), start_(system.num_particles(), 0),
+      bins_(top_, kMaxLevel, opts.partition_hysteresis), level_stats_(kMaxLevel + 1) {
+  index_entries();
+  const std::vector<Real>& r = opts.resume_data;
+  if (!r.empty()) {  // a restart: the derivative and levels of the run being continued
+    if (r.size() != n_ + level_.size() + 1)
+      throw std::invalid_argument("resume_data: " + std::to_string(r.size()) + " values, expected " +
+                                  std::to_string(n_ + level_.size() + 1));
+    std::copy(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(n_), dy_.begin());
+    std::vector<int> levels(r.begin() + static_cast<std::ptrdiff_t>(n_), r.end() - 1);
+    bins_.set_levels(levels);  // checks the range
+    level_ = std::move(levels);
+    fresh_ = r.back() != 0;
+    rhs_evals_ = 0;
+    return;
+  }
+  const int code = system_.rhs(t_, y_.data(), dy_.data());
+  if (code != 0) throw std::runtime_error("leapfrog-blocks: initial rhs failed: " + system_.last_error());
+}
+
+std::vector<Real> BlockLeapfrogStepper::resume_data() const {
+  if (failed_) return {};
+  std::vector<Real> r = dy_;
+  r.insert(r.end(), level_.begin(), level_.end());
+  r.push_back(bins_.dt_top() != top_ ? 1 : 0);  // after a shortened landing step: bin afresh
+  return r;
+}
+
+// Each particle's kicked entries (every entry but the positions), from entry_particles().
+void BlockLeapfrogStepper::index_entries() {
+  owner_ = system_.entry_particles();
+  entries_.assign(system_.num_particles(), {});
+  if (owner_.size() != n_) throw std::logic_error("entry_particles: not one particle per state entry");
+  for (std::size_t k = 0; k < n_; ++k)
+    if (k < xp_ || k >= xp_ + np_) entries_.at(owner_[k]).push_back(k);
+  for (std::size_t i = 0; i < entries_.size(); ++i)  // e.g. num_particles() overridden, entry_particles() not
+    if (entries_[i].empty())
+      throw std::logic_error("entry_particles: particle " + std::to_string(i) + " owns no kicked state entry");
+}
+
+void BlockLeapfrogStepper::resize(const Resized& state) {
+  if (state.y == nullptr) throw std::invalid_argument("resize: no state");
+  n_ = system_.size(), np_ = system_.position_size(), xp_ = system_.position_offset(), vp_ = system_.velocity_offset();
+  y_.assign(state.y, state.y + n_);
+  dy_.assign(n_, 0);
+  index_entries();
+  level_.assign(entries_.size(), 0);
+  start_.assign(entries_.size(), 0);
+  fresh_ = true;
+  if (failed_) return;
+  if (state.carried) {
+    std::copy(state.carried, state.carried + n_, dy_.begin());
+  } else {
+    ++rhs_evals_;
+    if (const int code = system_.rhs(t_, y_.data(), dy_.data()); code != 0) {
+      failed_ = true;
+      failure_ = "leapfrog-blocks: rhs after resize returned " + std::to_string(code) + ": " + system_.last_error();
+    }
+  }
+}
+
+void BlockLeapfrogStepper::kick(const std::vector<std::size_t>& particles, Real factor, std::vector<Real>& w) const {
+  for (std::size_t i : particles) {
+    const Real h = factor * static_cast<Real>(length(level_[i])) * tick_dt_;
+    for (std::size_t k : entries_[i]) w[k] += h * dy_[k];
+  }
+}
+
+// New levels for `particles` whose steps end at `tick` (fresh: the start of a cycle, no
+// hysteresis across a change of the top step); a longer step only where its grid aligns.
+void BlockLeapfrogStepper::rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh) {
+  stable_.assign(level_.size(), 0);
+  if (system_.particle_stable_dt(t, eval_.data(), dy_.data(), stable_.data()) != 0)
+    throw CycleFailure("particle_stable_dt failed at t=" + at_time(t) + ": " + system_.last_error());
+  for (std::size_t i : particles) {
+    const Real dt = opts_.cfl_safety * stable_[i];
+    if (!(dt > 0)) throw CycleFailure("particle " + std::to_string(i) + ": stable step " + at_time(dt) + " at t=" + at_time(t));
+    int l = fresh ? bins_.needed_level(dt) : bins_.next_level(level_[i], dt);
+    if (bins_.level_dt(l) > dt)
+      throw CycleFailure("particle " + std::to_string(i) + " needs a step below top/2^" + std::to_string(kMaxLevel) +
+                         " at t=" + at_time(t));
+    while (tick % length(l) != 0) ++l;  // aligned with the block grid
+    level_[i] = l;
+    start_[i] = tick;
+  }
+}
+
+std::vector<std::size_t> BlockLeapfrogStepper::ending_at(std::int64_t tick) const {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < level_.size(); ++i)
+    if (start_[i] + length(level_[i]) == tick) out.push_back(i);
+  return out;
+}
+
+void BlockLeapfrogStepper::count(const std::vector<std::size_t>& active) {
+  std::vector<char> seen(kMaxLevel + 1, 0);
+  for (std::size_t i : active) {
+    ++level_stats_[level_[i]].particle_evals;
+    if (!seen[level_[i]]) seen[level_[i]] = 1, ++level_stats_[level_[i]].rhs_evals, ++level_stats_[level_[i]].steps;
+  }
+}
+
+// Every particle's w predicted to the event (w*), into eval_.
+void BlockLeapfrogStepper::predict(std::int64_t tick) {
+  eval_ = w_;
+  for (std::size_t j = 0; j < level_.size(); ++j) {
+    const Real lead = (static_cast<Real>(tick - start_[j]) - 0.5 * static_cast<Real>(length(level_[j]))) * tick_dt_;
+    for (std::size_t k : entries_[j]) eval_[k] += lead * dy_[k];
+  }
+}
+
+// The particles, not ending at `tick`, whose stable step at the predicted state is below their
+// current step (ascending).
+std::vector<std::size_t> BlockLeapfrogStepper::woken_at(Real t, std::int64_t tick, const std::vector<std::size_t>& ending) {
+  stable_.assign(level_.size(), 0);
+  if (system_.particle_stable_dt(t, eval_.data(), dy_.data(), stable_.data()) != 0)
+    throw CycleFailure("particle_stable_dt failed at t=" + at_time(t) + ": " + system_.last_error());
+  std::vector<std::size_t> woken;
+  std::size_t e = 0;
+  for (std::size_t i = 0; i < level_.size(); ++i) {
+    while (e < ending.size() && ending[e] < i) ++e;
+    if (e < ending.size() && ending[e] == i) continue;
+    if (start_[i] + length(level_[i]) > tick && opts_.cfl_safety * stable_[i] < bins_.level_dt(level_[i])) woken.push_back(i);
+  }
+  return woken;
+}
+
+// A woken particle's step is cut to its elapsed part e: the drift and the start kick it got with
+// the step's full length become those of a step of length e (its old derivative kept in old_dy_).
+void BlockLeapfrogStepper::cut_back(const std::vector<std::size_t>& woken, std::int64_t tick) {
+  old_dy_ = dy_;
+  for (std::size_t i : woken) {
+    const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_, full = static_cast<Real>(length(level_[i])) * tick_dt_;
+    for (std::size_t k : entries_[i]) {
+      w_[k] -= 0.5 * (full - e) * dy_[k];
+      if (k >= vp_ && k < vp_ + np_) w_[xp_ + (k - vp_)] -= e * 0.5 * (full - e) * dy_[k];
+    }
+    ++wakeups_;
+  }
+}
+
+// The active particles' derivatives at (t, eval_).
+void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& active) {
+  if (opts_.interrupt && opts_.interrupt()) throw CycleInterrupted{};
+  count(active);
+  ++rhs_evals_;
+  const int code = system_.rhs_subset(t, eval_.data(), active, out_.data());
+  if (code != 0)
+    throw CycleFailure("rhs returned " + std::to_string(code) + " at t=" + at_time(t) + ": " + system_.last_error());
+  for (std::size_t i : active)
+    for (std::size_t k : entries_[i]) dy_[k] = out_[k];
+}
+
+// One top step: kicks at every particle's step start and end, drifts of all at every event.
+void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
+  tick_dt_ = std::ldexp(top, -kMaxLevel);
+  w_ = y_;
+  eval_ = y_;
+  out_.assign(n_, 0);
+  std::vector<std::size_t> all(level_.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  rebin(t_, all, 0, fresh_);
+  fresh_ = false;
+  kick(all, 0.5, w_);
+  std::int64_t tick = 0;
+  while (tick < kTicks) {
+    std::int64_t next = kTicks;
+    for (std::size_t i = 0; i < level_.size(); ++i) next = std::min(next, start_[i] + length(level_[i]));
+    const Real dt = static_cast<Real>(next - tick) * tick_dt_;
+    for (std::size_t k = 0; k < np_; ++k) w_[xp_ + k] += dt * w_[vp_ + k];
+    tick = next;
+    ++events_;
+    const Real t = next == kTicks ? t_end : t_ + static_cast<Real>(tick) * tick_dt_;
+    const std::vector<std::size_t> ending = ending_at(tick);
+    predict(tick);
+    const std::vector<std::size_t> woken = tick < kTicks ? woken_at(t, tick, ending) : std::vector<std::size_t>{};
+    std::vector<std::size_t> active = ending;
+    if (!woken.empty()) {
+      cut_back(woken, tick);
+      for (std::size_t i : woken) {  // their w* from the cut-back state: as at the end of a step of length e
+        const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_;
+        for (std::size_t k : entries_[i]) {
+          eval_[k] = w_[k] + 0.5 * e * dy_[k];
+          if (k >= vp_ && k < vp_ + np_) eval_[xp_ + (k - vp_)] = w_[xp_ + (k - vp_)];
+        }
+      }
+      active.insert(active.end(), woken.begin(), woken.end());
+      std::sort(active.begin(), active.end());
+    }
+    evaluate(t, active);
+    kick(ending, 0.5, w_);  // end of their steps
+    for (std::size_t i : woken) {  // end of their cut steps: e/2 of the new derivative
+      const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_;
+      for (std::size_t k : entries_[i]) w_[k] += 0.5 * e * dy_[k];
+    }
+    if (tick == kTicks) break;
+    rebin(t, active, tick, false);
+    kick(active, 0.5, w_);  // start of their next steps
+  }
+  y_ = w_;
+  t_ = t_end;
+  last_dt_ = top;
+}
+
+AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
+  ScopedPhase timer(Phase::Advance);
+  if (t_out < t_) throw std::invalid_argument("t_out=" + at_time(t_out) + ": before the current time " + at_time(t_));
+  if (!failed_ && t_out > t_) {
+    const std::vector<Real> y_start = y_, dy_start = dy_;
+    const std::vector<int> level_start = level_;
+    const Real t_start = t_;
+    // The last top step lands on t_out; within round-off of top_ it keeps top_'s levels.
+    const bool landing = !(t_ + top_ * (1 + 1e-9) < t_out);
+    const Real rest = t_out - t_;
+    const Real top = landing && std::abs(rest - top_) > 1e-9 * top_ ? rest : top_;
+    if (top != bins_.dt_top()) bins_ = LevelPartition(top, kMaxLevel, opts_.partition_hysteresis), fresh_ = true;
+    AdvanceStatus status = AdvanceStatus::Stepped;
+    try {
+      cycle(top, landing ? t_out : t_ + top);
+    } catch (const CycleInterrupted&) {
+      status = AdvanceStatus::Interrupted;
+    } catch (...) {
+      failed_ = true;
+      failure_ = current_exception_message("leapfrog-blocks");
+      status = AdvanceStatus::Failed;
+    }
+    if (status != AdvanceStatus::Stepped) {  // back to the last synchronised state
+      y_ = y_start, dy_ = dy_start, level_ = level_start, t_ = t_start;
+      std::copy(y_.begin(), y_.end(), y);
+      t = t_;
+      return status;
+    }
+  }
+  std::copy(y_.begin(), y_.end(), y);
+  t = t_;
+  if (failed_) return AdvanceStatus::Failed;
+  return t_ < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
+}
+
+AdvanceStatus BlockLeapfrogStepper::advance(Real t_out, Real* y, Real& t) {
+  for (;;) {
+    const AdvanceStatus status = step(t_out, y, t);
+    if (status != AdvanceStatus::Stepped) return status;
+  }
+}
+
+// steps: events (distinct evaluation times, each a drift of all particles); levels: one entry
+// per level down to the deepest used, steps = rhs_evals = the level's own steps.
+StepperStats BlockLeapfrogStepper::stats() const {
+  StepperStats s;
+  s.steps = s.attempts = events_;
+  s.rhs_evals = rhs_evals_;
+  int deepest = 0;
+  for (int l = 0; l <= kMaxLevel; ++l)
+    if (level_stats_[l].rhs_evals > 0) deepest = l;
+  s.levels.assign(level_stats_.begin(), level_stats_.begin() + deepest + 1);
+  s.last_dt = last_dt_;
+  s.current_time = t_;
+  return s;
+}
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_block_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
+                                                     const Real* y0) {
+  return std::make_unique<BlockLeapfrogStepper>(system, opts, t0, y0);
+}
+
+}  // namespace sphark::detail

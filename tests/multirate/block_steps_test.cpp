@@ -1,0 +1,232 @@
+// "leapfrog-blocks": Phantom-style power-of-two block steps on the KDK leapfrog (issue #17).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "oscillator_ensemble.hpp"
+#include "pair_springs.hpp"
+#include "switching_ensemble.hpp"
+#include "sphark/integrate/stepper.hpp"
+
+namespace sphark::test {
+namespace {
+
+OscillatorEnsemble ensemble() { return OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3); }
+
+std::vector<Real> initial_state(const OscillatorEnsemble& sys) {
+  std::vector<Real> y(sys.size());
+  for (std::size_t i = 0; i < sys.n(); ++i) y[i] = std::cos(1.0 + i), y[sys.n() + i] = std::sin(2.0 * i);
+  return sys.project_below(y, 10);  // the slow manifold (see mri_order_test.cpp)
+}
+
+Real max_error(const std::vector<Real>& a, const std::vector<Real>& b) {
+  Real e = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) e = std::max(e, std::abs(a[k] - b[k]));
+  return e;
+}
+
+// Top step h; cfl_safety = 1.5 h puts the slow oscillators (stable step 1) on level 0 and the
+// fast ones (1/100) on level 7 (h / 128) for every h, so that all steps halve with h.
+StepperOptions blocks(Real h) {
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  o.fixed_dt = h;
+  o.cfl_safety = 1.5 * h;
+  return o;
+}
+
+TEST(BlockSteps, SecondOrderOnTheOscillatorEnsemble) {
+  std::vector<Real> e;
+  for (int k = 0; k < 4; ++k) {
+    const Real h = 0.1 / (1 << k);
+    OscillatorEnsemble sys = ensemble();
+    const std::vector<Real> y0 = initial_state(sys);
+    auto stepper = make_stepper(sys, blocks(h), 0, y0.data());
+    std::vector<Real> y(y0.size());
+    Real t = 0;
+    ASSERT_EQ(stepper->advance(1.0, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    ASSERT_EQ(t, 1.0);
+    e.push_back(max_error(y, sys.exact(y0, 1.0)));
+    const StepperStats s = stepper->stats();
+    const long cycles = std::lround(1.0 / h);
+    ASSERT_EQ(s.levels.size(), 8u);
+    for (int l = 1; l < 7; ++l) EXPECT_EQ(s.levels[l].particle_evals, 0) << "level " << l;
+    EXPECT_EQ(s.levels[0].rhs_evals, cycles);        // once per top step
+    EXPECT_EQ(s.levels[7].rhs_evals, 128 * cycles);  // every h / 128
+    EXPECT_EQ(s.levels[0].particle_evals, 6 * cycles);
+    EXPECT_EQ(s.levels[7].particle_evals, 2 * 128 * cycles);
+    EXPECT_EQ(s.rhs_evals, 1 + 128 * cycles);  // the initial full RHS, one call per event
+    EXPECT_EQ(s.particle_evals, 8 + s.levels[0].particle_evals + s.levels[7].particle_evals);
+    std::printf("h=%g: error %.3e, particle evals %ld (global leapfrog at h/128: %ld)\n", h, e.back(),
+                s.particle_evals, 8 * (1 + 128 * cycles));
+  }
+  for (std::size_t k = 1; k < e.size(); ++k) {
+    const Real order = std::log2(e[k - 1] / e[k]);
+    std::printf("order %.3f\n", order);
+    EXPECT_GE(order, 2 - 0.3) << "halving " << k;
+  }
+}
+
+// Momentum drift |P(10) - P(0)| with top step h and levels from cfl_safety.
+Real momentum_drift(Real h, Real cfl, std::size_t* levels) {
+  PairSprings sys;
+  const std::vector<Real> y0 = spring_state();
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  o.fixed_dt = h;
+  o.cfl_safety = cfl;
+  auto stepper = make_stepper(sys, o, 0, y0.data());
+  std::vector<Real> y(y0.size());
+  Real t = 0;
+  EXPECT_EQ(stepper->advance(10.0, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+  *levels = stepper->stats().levels.size();
+  return std::abs(PairSprings::momentum(y) - PairSprings::momentum(y0));
+}
+
+TEST(BlockSteps, MomentumToRoundOffOnOneLevel) {
+  std::size_t levels = 0;
+  // Stable steps 1/sqrt(25) (soft) and 1/sqrt(160) (stiff): all above h = 0.005.
+  const Real drift = momentum_drift(0.005, 1.0, &levels);
+  std::printf("one level: momentum drift %.3e\n", drift);
+  EXPECT_EQ(levels, 1u);
+  EXPECT_LE(drift, 1e-14);
+}
+
+// Across levels a pair force is sampled at different times for its two particles: momentum is
+// conserved to the time-stepping error only (block_leapfrog_stepper.cpp); measured here.
+TEST(BlockSteps, MomentumAcrossLevelsFallsWithTheStep) {
+  std::vector<Real> d;
+  for (int k = 0; k < 4; ++k) {
+    const Real h = 0.05 / (1 << k);
+    std::size_t levels = 0;
+    d.push_back(momentum_drift(h, 0.3 * h / 0.05, &levels));
+    std::printf("h=%g: %zu levels, momentum drift %.3e\n", h, levels, d.back());
+    EXPECT_GT(levels, 1u);
+  }
+  for (std::size_t k = 1; k < d.size(); ++k) {
+    const Real order = std::log2(d[k - 1] / d[k]);
+    std::printf("momentum drift order %.3f\n", order);
+    EXPECT_GE(order, 2 - 0.3) << "halving " << k;
+  }
+}
+
+TEST(BlockSteps, OneLevelIsTheGlobalLeapfrog) {
+  PairSprings a_sys, b_sys;
+  const std::vector<Real> y0 = spring_state();
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  o.fixed_dt = 0.005;
+  auto a = make_stepper(a_sys, o, 0, y0.data());
+  o.method = "leapfrog";
+  auto b = make_stepper(b_sys, o, 0, y0.data());
+  std::vector<Real> ya(16), yb(16);
+  Real ta = 0, tb = 0;
+  ASSERT_EQ(a->advance(2.0, ya.data(), ta), AdvanceStatus::Reached);
+  ASSERT_EQ(b->advance(2.0, yb.data(), tb), AdvanceStatus::Reached);
+  std::printf("one level vs leapfrog: max difference %.3e\n", max_error(ya, yb));
+  EXPECT_LE(max_error(ya, yb), 1e-13);
+  EXPECT_EQ(a->stats().particle_evals, b->stats().particle_evals);
+}
+
+// A restart at (t1, y(t1)) with resume_data (the FSAL derivative and the levels) continues bit
+// for bit; particle 0 is held on a deep level by the hysteresis, which binning afresh loses.
+TEST(BlockSteps, ARestartCarriesTheLevelsAndTheDerivative) {
+  const Real h = 0.05, t1 = 0.7, t2 = 1.0;
+  // Advances to each of t_outs in turn (a time loop with an output at t1).
+  auto run = [&](Real t0, const std::vector<Real>& y0, const std::vector<Real>& resume, std::vector<Real> t_outs,
+                 std::vector<Real>* resume_out) {
+    HystereticEnsemble sys(0.2, 0.4, 1.1 * h / 4);  // after 0.4: 1.1 x the level-2 step
+    StepperOptions o = blocks(h);
+    o.cfl_safety = 1;
+    o.resume_data = resume;
+    auto stepper = make_stepper(sys, o, t0, y0.data());
+    std::vector<Real> y(y0.size());
+    Real t = t0;
+    for (Real t_end : t_outs)
+      EXPECT_EQ(stepper->advance(t_end, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    if (resume_out) *resume_out = stepper->resume_data();
+    return y;
+  };
+  OscillatorEnsemble sys = ensemble();
+  const std::vector<Real> y0 = initial_state(sys);
+  std::vector<Real> resume;
+  const std::vector<Real> y1 = run(0, y0, {}, {t1}, &resume);
+  ASSERT_EQ(resume.size(), 16u + 8u + 1u);
+  EXPECT_EQ(resume[16], 3);  // particle 0: held on level 3 (h/8 = 0.00625 <= 0.01), not level 2
+  const std::vector<Real> y_continued = run(0, y0, {}, {t1, t2}, nullptr);
+  const std::vector<Real> y_restarted = run(t1, y1, resume, {t2}, nullptr);
+  const std::vector<Real> y_fresh = run(t1, y1, {}, {t2}, nullptr);
+  for (std::size_t k = 0; k < y0.size(); ++k) EXPECT_EQ(y_restarted[k], y_continued[k]) << "entry " << k;
+  EXPECT_NE(y_fresh, y_continued);
+}
+
+// resize() between cycles (the time loop's particle changes), here to the same state with the
+// carried derivative: the run goes on as a fresh stepper with that derivative whose first cycle
+// bins afresh (resume_data: derivative, levels, "bin afresh").
+TEST(BlockSteps, ResizeCarriesTheDerivativeAndBinsAfresh) {
+  const Real h = 0.05, t1 = 0.5, t2 = 1.0;
+  HystereticEnsemble a_sys(0.2, 0.4, 1.1 * h / 4), b_sys(0.2, 0.4, 1.1 * h / 4);
+  OscillatorEnsemble shape = ensemble();
+  const std::vector<Real> y0 = initial_state(shape);
+  StepperOptions o = blocks(h);
+  o.cfl_safety = 1;
+  auto a = make_stepper(a_sys, o, 0, y0.data());
+  std::vector<Real> y1(y0.size()), ya(y0.size()), yb(y0.size());
+  Real t = 0;
+  ASSERT_EQ(a->advance(t1, y1.data(), t), AdvanceStatus::Reached);
+  const std::vector<Real> carried = a->carried_data();
+  ASSERT_EQ(carried.size(), y0.size());
+  a->resize({y1.data(), nullptr, carried.data()});
+  ASSERT_EQ(a->advance(t2, ya.data(), t), AdvanceStatus::Reached) << a->failure_reason();
+  o.resume_data = carried;
+  o.resume_data.insert(o.resume_data.end(), 8, 0.0);  // levels (binned afresh anyway)
+  o.resume_data.push_back(1);                         // bin afresh
+  auto b = make_stepper(b_sys, o, t1, y1.data());
+  ASSERT_EQ(b->advance(t2, yb.data(), t), AdvanceStatus::Reached) << b->failure_reason();
+  for (std::size_t k = 0; k < ya.size(); ++k) EXPECT_EQ(ya[k], yb[k]) << "entry " << k;
+}
+
+// Wake-up: particle 0 reports a fast stable step from t = 0.52 on, in the middle of its level-0
+// step [0.5, 0.6): it is evaluated at the first event after 0.52 (the fast particles' grid,
+// h / 128), not at 0.6, and the run keeps second order.
+TEST(BlockSteps, AParticleWhoseStableStepFallsIsWokenUp) {
+  std::vector<Real> e;
+  for (int k = 0; k < 4; ++k) {
+    const Real h = 0.1 / (1 << k);
+    SwitchingEnsemble sys(0.52);
+    sys.record_calls = true;
+    const std::vector<Real> y0 = initial_state(sys);
+    auto stepper = make_stepper(sys, blocks(h), 0, y0.data());  // levels: slow 0, fast 7
+    std::vector<Real> y(y0.size());
+    Real t = 0;
+    ASSERT_EQ(stepper->advance(1.0, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    Real first = 2;
+    for (const auto& call : sys.calls)
+      if (call.t > 0.52 && call.active.front() == 0) first = std::min(first, call.t);
+    EXPECT_LE(first, 0.52 + h / 128 + 1e-12) << "h=" << h;
+    e.push_back(max_error(y, sys.exact(y0, 1.0)));
+  }
+  for (std::size_t k = 1; k < e.size(); ++k) {
+    const Real order = std::log2(e[k - 1] / e[k]);
+    std::printf("with a wake-up: error %.3e -> %.3e, order %.3f\n", e[k - 1], e[k], order);
+    EXPECT_GE(order, 2 - 0.3) << "halving " << k;
+  }
+}
+
+TEST(BlockSteps, BadOptionsAreOneLineInvalidArguments) {
+  OscillatorEnsemble sys = ensemble();
+  const std::vector<Real> y0 = initial_state(sys);
+  StepperOptions o;
+  o.method = "leapfrog-blocks";
+  try {
+    make_stepper(sys, o, 0, y0.data());
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("set fixed_dt or max_dt"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace sphark::test

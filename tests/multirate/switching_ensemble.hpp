@@ -1,0 +1,55 @@
+#pragma once
+// Oscillator ensembles whose reported stable steps change in time (their dynamics does not):
+// only the partition moves particles between levels (repartition and restart tests).
+#include "oscillator_ensemble.hpp"
+
+namespace sphark::test {
+
+// Particle 0 reports the stable step 0.01 (fast) from t_switch on.
+class SwitchingEnsemble : public OscillatorEnsemble {
+ public:
+  explicit SwitchingEnsemble(Real t_switch)
+      : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_switch_(t_switch) {}
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
+    OscillatorEnsemble::particle_stable_dt(t, y, ydot, dt);
+    if (t >= t_switch_) dt[0] = 0.01;
+    return 0;
+  }
+
+ private:
+  Real t_switch_;
+};
+
+// Particle 0 reports 0.01 on [t_on, t_off) and `after` from t_off on: with `after` within the
+// hysteresis margin above a level's step it stays on the deeper level; a run that bins afresh
+// would put it elsewhere (the restart must carry the partition).
+class HystereticEnsemble : public OscillatorEnsemble {
+ public:
+  HystereticEnsemble(Real t_on, Real t_off, Real after)
+      : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_on_(t_on), t_off_(t_off), after_(after) {}
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
+    OscillatorEnsemble::particle_stable_dt(t, y, ydot, dt);
+    if (t >= t_on_) dt[0] = t < t_off_ ? 0.01 : after_;
+    return 0;
+  }
+
+ private:
+  Real t_on_, t_off_, after_;
+};
+
+// Every particle's reported stable step halves from t_halve on: all move one level deeper.
+class HalvingEnsemble : public OscillatorEnsemble {
+ public:
+  explicit HalvingEnsemble(Real t_halve) : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_(t_halve) {}
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
+    OscillatorEnsemble::particle_stable_dt(t, y, ydot, dt);
+    if (t >= t_)
+      for (std::size_t i = 0; i < n(); ++i) dt[i] *= 0.5;
+    return 0;
+  }
+
+ private:
+  Real t_;
+};
+
+}  // namespace sphark::test
