@@ -87,19 +87,27 @@ void check_run_options(const OptionParser& p, RunControlOptions& o, CoreOptions&
   check_step_option(p, core);
 }
 
-void check_step_option(const OptionParser& p, const CoreOptions& core) {
-  if (!(core.dt > 0)) return;
-  const Real floor = kStepFloorFraction * core.t_end;
+namespace {
+// A step (--dt, or the bound --max-dt) that does not advance t, or below the step floor.
+void check_one_step(const OptionParser& p, std::string_view option, Real dt, Real t_end) {
+  if (!(dt > 0)) return;
+  const Real floor = kStepFloorFraction * t_end;
   char why[256];
-  if (!(core.t_end + core.dt > core.t_end))
+  if (!(t_end + dt > t_end))
     std::snprintf(why, sizeof why, "%.3g does not advance t at --t-end %.3g (t + dt == t); the step floor is %.3g (%.0e x --t-end)",
-                  core.dt, core.t_end, floor, kStepFloorFraction);
-  else if (core.dt < floor)
+                  dt, t_end, floor, kStepFloorFraction);
+  else if (dt < floor)
     std::snprintf(why, sizeof why, "%.3g is below the step floor %.3g (%.0e x --t-end: a run of more than %.0e steps)",
-                  core.dt, floor, kStepFloorFraction, 1 / kStepFloorFraction);
+                  dt, floor, kStepFloorFraction, 1 / kStepFloorFraction);
   else
     return;
-  p.fail("--dt", why);
+  p.fail(option, why);
+}
+}  // namespace
+
+void check_step_option(const OptionParser& p, const CoreOptions& core) {
+  check_one_step(p, "--dt", core.dt, core.t_end);
+  check_one_step(p, "--max-dt", core.max_dt, core.t_end);
 }
 
 std::optional<std::string> checkpoint_number_problem(const Checkpoint& c) {

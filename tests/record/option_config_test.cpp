@@ -66,7 +66,8 @@ TEST(OptionRecords, EveryOptionWithNameTypeValueAndWhetherGiven) {
   ASSERT_EQ(r.status, ParseStatus::ok) << r.err;
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"out", "path"},         {"t-end", "real"},       {"stepper", "string"},    {"rtol", "real"},
-      {"atol", "real"},        {"dt", "real"},          {"step-cap", "switch"},   {"output-every", "real"},
+      {"atol", "real"},        {"dt", "real"},          {"step-cap", "switch"},   {"max-dt", "real"},
+      {"mri-ratio", "integer"}, {"mri-fast-table", "string"}, {"output-every", "real"},
       {"threads", "integer"},
       {"no-render", "flag"},   {"profile", "flag"},     {"seed", "integer"},      {"kernel", "string"},
       {"cleaning", "switch"},  {"resolutions", "real list"}, {"counts", "integer list"}, {"restart", "path"}};
@@ -80,7 +81,8 @@ TEST(OptionRecords, EveryOptionWithNameTypeValueAndWhetherGiven) {
   }
   EXPECT_EQ(to_json_line(r.json),
             "{\"out\": \"out\", \"t-end\": 0.25, \"stepper\": \"ARKODE_DORMAND_PRINCE_7_4_5\", \"rtol\": 1e-06, "
-            "\"atol\": 1e-09, \"dt\": 0, \"step-cap\": true, \"output-every\": 0, \"threads\": 0, \"no-render\": true, \"profile\": false, "
+            "\"atol\": 1e-09, \"dt\": 0, \"step-cap\": true, \"max-dt\": 0, \"mri-ratio\": 4, "
+            "\"mri-fast-table\": \"ARKODE_ZONNEVELD_5_3_4\", \"output-every\": 0, \"threads\": 0, \"no-render\": true, \"profile\": false, "
             "\"seed\": 7, \"kernel\": \"cubic\", \"cleaning\": true, \"resolutions\": [25, 50], \"counts\": [1, 2], "
             "\"restart\": \"\"}");
   EXPECT_EQ(r.given, (std::vector<bool>{true, false, false, true}));

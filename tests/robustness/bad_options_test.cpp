@@ -50,6 +50,8 @@ TEST(BadOptions, WaterDropRejectsEveryClassWithOneLineAndNoFiles) {
       {{"--delta", "0"}, "--delta: bad value '0'"},  // no diffusion is --scheme seed
       {{"--scheme", "seed", "--delta", "0.1"}, "--delta: --scheme seed has no density diffusion"},
       {{"--step-cap", "sometimes"}, "--step-cap: bad value 'sometimes'"},
+      {{"--max-dt", "1e-300"}, "--max-dt: 1e-300 does not advance t"},
+      {{"--max-dt", "1e-12"}, "--max-dt: 1e-12 is below the step floor"},
       {{"--initial-pressure", "hydrostatic"}, "--initial-pressure: bad value 'hydrostatic'"},
       {{"--frobnicate", "1"}, "--frobnicate"},                               // unknown option
       {{"--spacing", "0"}, "--spacing: bad value '0'"},                      // non-positive size

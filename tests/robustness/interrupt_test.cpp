@@ -107,7 +107,8 @@ TEST(Interrupt, MidIntervalOfAnAdaptiveRun) {
   TempDir dir;
   const fs::path out = dir.path() / "erk";
   const Spawned s = spawn(bin,
-                          {"--spacing", "0.1", "--cleaning", "on", "--no-render", "--diagnostics-every", "0.05",
+                          {"--spacing", "0.1", "--scheme", "delta-sph", "--cleaning", "on", "--step-cap", "on",
+                           "--no-render", "--diagnostics-every", "0.05",
                            "--output-every", "0.05", "--t-end", "0.1", "--out", out.string()},
                           dir.path());
   const Timed r = signal_when(s, out / "cleaned" / "drop_00000.vtp", SIGTERM, std::chrono::milliseconds(300));

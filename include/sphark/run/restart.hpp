@@ -44,7 +44,7 @@ struct RunControlOptions {
 void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
 // After parsing: --output-every and --checkpoint-every given by the user must not exceed
 // --t-end (p.fail, exit 2); their defaults follow a shorter run (limit_to_t_end).
-// Also checks --dt against the step floor (check_step_option).
+// Also checks --dt and --max-dt against the step floor (check_step_option).
 void check_run_options(const OptionParser& p, RunControlOptions& o, CoreOptions& core);
 // A fixed --dt below the step floor kStepFloorFraction x --t-end (run/time_loop.hpp), or one that
 // does not advance t at --t-end (t + dt == t): p.fail("--dt", ...), exit 2.
