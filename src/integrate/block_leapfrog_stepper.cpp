@@ -347,12 +347,7 @@ AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
   return t_ < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
 }
 
-AdvanceStatus BlockLeapfrogStepper::advance(Real t_out, Real* y, Real& t) {
-  for (;;) {
-    const AdvanceStatus status = step(t_out, y, t);
-    if (status != AdvanceStatus::Stepped) return status;
-  }
-}
+AdvanceStatus BlockLeapfrogStepper::advance(Real t_out, Real* y, Real& t) { return detail::advance_by_steps(*this, t_out, y, t); }
 
 // steps: events (distinct evaluation times, each a drift of all particles); levels: one entry
 // per level down to the deepest used, steps = rhs_evals = the level's own steps.

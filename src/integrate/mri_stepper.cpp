@@ -314,12 +314,7 @@ AdvanceStatus MriStepper::step(Real t_out, Real* y, Real& t) {
   return t_ < t_out ? AdvanceStatus::Stepped : AdvanceStatus::Reached;
 }
 
-AdvanceStatus MriStepper::advance(Real t_out, Real* y, Real& t) {
-  for (;;) {
-    const AdvanceStatus status = step(t_out, y, t);
-    if (status != AdvanceStatus::Stepped) return status;
-  }
-}
+AdvanceStatus MriStepper::advance(Real t_out, Real* y, Real& t) { return detail::advance_by_steps(*this, t_out, y, t); }
 
 // Level 0 slow (steps, f_slow evaluations), level 1 fast (inner steps, f_fast evaluations);
 // rhs_evals counts both (the subset calls); particle_evals is filled in by the guard.

@@ -8,6 +8,15 @@
 
 namespace sphark::detail {
 
+// advance() of a stepper whose step() is the unit: steps until t_out is reached or a step ends
+// otherwise (root, failure, interrupt).
+inline AdvanceStatus advance_by_steps(Stepper& stepper, Real t_out, Real* y, Real& t) {
+  for (;;) {
+    const AdvanceStatus status = stepper.step(t_out, y, t);
+    if (status != AdvanceStatus::Stepped) return status;
+  }
+}
+
 std::unique_ptr<Stepper> make_erk_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                           const Real* y0);
 std::unique_ptr<Stepper> make_imex_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,

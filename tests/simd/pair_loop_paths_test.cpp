@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "../spmhd/spmhd_checks.hpp"
+#include "../support/clump_state.hpp"
 #include "sphark/initial/spheres.hpp"
 #include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 #include "sphark/scenes/water_drop/water_drop.hpp"
@@ -220,21 +221,7 @@ TEST(PairLoopPaths, SpmhdGravityAndSink3D) {
   auto make = [&place, n, o] {
     auto s = std::make_shared<SpmhdScheme<3>>(std::vector<Real>(n, place.particle_mass), o);
     std::vector<Real> all(s->size(), 0), scratch(s->size());
-    {
-      const StateLayout& L = s->layout();
-      auto x = vector_field<3>(all.data(), L, Field::Position);
-      auto v = vector_field<3>(all.data(), L, Field::Velocity);
-      auto u = scalar_field(all.data(), L, Field::InternalEnergy);
-      auto B = vector_field<3>(all.data(), L, Field::MagneticField);
-      auto psi = scalar_field(all.data(), L, Field::Psi);
-      for (std::size_t a = 0; a < n; ++a) {
-        x.col(a) = Eigen::Map<const Vec<3>>(place.x.data() + 3 * a);
-        v.col(a) = -x.col(a) + Vec<3>(-0.2 * x(1, a), 0.2 * x(0, a), 0.05 * std::sin(1.3 * a));
-        u(a) = 1e-3 * (1 + 0.3 * std::sin(0.7 * a));
-        B.col(a) = 1e-2 * Vec<3>(std::sin(3.0 * a), 0.5, -std::cos(1.0 * a));
-        psi(a) = 1e-4 * std::cos(0.4 * a);
-      }
-    }
+    test::fill_clump_gas(place, s->layout(), all);
     EXPECT_EQ(s->rhs(0, all.data(), scratch.data()), 0) << s->last_error();  // h of every particle
     // particle 0 becomes a sink of three particle masses at its place
     std::vector<std::size_t> kept;

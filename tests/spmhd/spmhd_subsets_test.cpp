@@ -12,6 +12,7 @@
 
 #include "sphark/initial/spheres.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+#include "../support/clump_state.hpp"
 
 namespace sphark {
 namespace {
@@ -39,18 +40,7 @@ Clump clump() {
   SpmhdScheme<3>& s = *c.scheme;
   std::vector<Real> all(s.size(), 0), scratch(s.size());
   const StateLayout before = s.layout();
-  auto x = vector_field<3>(all.data(), before, Field::Position);
-  auto v = vector_field<3>(all.data(), before, Field::Velocity);
-  auto u = scalar_field(all.data(), before, Field::InternalEnergy);
-  auto B = vector_field<3>(all.data(), before, Field::MagneticField);
-  auto psi = scalar_field(all.data(), before, Field::Psi);
-  for (std::size_t a = 0; a < n; ++a) {
-    x.col(a) = Eigen::Map<const Vec<3>>(place.x.data() + 3 * a);
-    v.col(a) = -x.col(a) + Vec<3>(-0.2 * x(1, a), 0.2 * x(0, a), 0.05 * std::sin(1.3 * a));
-    u(a) = 1e-3 * (1 + 0.3 * std::sin(0.7 * a));
-    B.col(a) = 1e-2 * Vec<3>(std::sin(3.0 * a), 0.5, -std::cos(1.0 * a));
-    psi(a) = 1e-4 * std::cos(0.4 * a);
-  }
+  test::fill_clump_gas(place, before, all);
   EXPECT_EQ(s.rhs(0, all.data(), scratch.data()), 0) << s.last_error();  // h of every particle
   std::vector<std::size_t> kept;
   for (std::size_t a = 1; a < n; ++a) kept.push_back(a);
