@@ -10,18 +10,13 @@
 
 #include "collective_checks.hpp"
 #include "sphark/core/profile.hpp"
+#include "number_text.hpp"
 
 namespace sphark::detail {
 namespace {
 
 constexpr int kMaxRecoveries = 10;    // consecutive restarts after recoverable RHS failures
 constexpr Real kRecoveryFactor = 0.25;  // step reduction per restart
-
-std::string at_time(Real t) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", t);
-  return buf;
-}
 
 // The system's max_stable_dt failed (NaN): the run stops instead of taking an uncapped step.
 struct StableStepFailure : std::runtime_error {

@@ -34,18 +34,13 @@
 #include "sphark/integrate/callback_errors.hpp"
 #include "sphark/integrate/level_partition.hpp"
 #include "steppers.hpp"
+#include "number_text.hpp"
 
 namespace sphark::detail {
 namespace {
 
 constexpr int kMaxLevel = 30;  // at most 2^30 substeps per top step
 constexpr std::int64_t kTicks = std::int64_t(1) << kMaxLevel;
-
-std::string at_time(Real t) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", t);
-  return buf;
-}
 
 struct CycleFailure : std::runtime_error {
   using std::runtime_error::runtime_error;

@@ -36,18 +36,13 @@
 #include "collective_checks.hpp"
 #include "sphark/core/profile.hpp"
 #include "steppers.hpp"
+#include "number_text.hpp"
 
 namespace sphark::detail {
 namespace {
 
 constexpr int kMaxHalvings = 10;     // retries of one step after recoverable RHS failures
 constexpr int kMaxRootIterations = 100;
-
-std::string at_time(Real t) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", t);
-  return buf;
-}
 
 bool crossed(Real before, Real after) {
   return (before < 0 && after >= 0) || (before > 0 && after <= 0);

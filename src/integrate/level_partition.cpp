@@ -3,34 +3,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
+#include "number_text.hpp"
+
 namespace sphark {
-namespace {
-
-std::string text(Real x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
-}  // namespace
 
 LevelPartition::LevelPartition(Real dt_top, int max_level, Real hysteresis)
     : dt_top_(dt_top), max_level_(max_level), hysteresis_(hysteresis) {
   if (!(dt_top > 0) || !std::isfinite(dt_top))
-    throw std::invalid_argument("partition top step=" + text(dt_top) + ": must be finite and > 0");
+    throw std::invalid_argument("partition top step=" + detail::number_text(dt_top) + ": must be finite and > 0");
   if (max_level < 0 || max_level > 60)
     throw std::invalid_argument("partition max_level=" + std::to_string(max_level) + ": must be in 0..60");
-  if (!(hysteresis >= 0)) throw std::invalid_argument("partition hysteresis=" + text(hysteresis) + ": must be >= 0");
+  if (!(hysteresis >= 0)) throw std::invalid_argument("partition hysteresis=" + detail::number_text(hysteresis) + ": must be >= 0");
 }
 
 Real LevelPartition::level_dt(int l) const { return std::ldexp(dt_top_, -l); }
 
 // The smallest l with dt_top / 2^l <= dt, by exact halvings (no log2 round-off at bin edges).
 int LevelPartition::needed_level(Real dt) const {
-  if (!(dt > 0)) throw std::invalid_argument("particle stable step=" + text(dt) + ": must be > 0");
+  if (!(dt > 0)) throw std::invalid_argument("particle stable step=" + detail::number_text(dt) + ": must be > 0");
   int l = 0;
   while (l < max_level_ && level_dt(l) > dt) ++l;
   return l;

@@ -1,5 +1,6 @@
 // The slow/fast split of the MRIStep stepper (mri_split.hpp).
 #include "mri_split.hpp"
+#include "number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,12 +11,6 @@ namespace sphark::detail {
 namespace {
 
 constexpr int kMaxLevel = 30;
-
-std::string at_time(Real t) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", t);
-  return buf;
-}
 
 }  // namespace
 

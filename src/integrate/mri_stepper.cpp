@@ -22,6 +22,7 @@
 #include "mri_split.hpp"
 #include "steppers.hpp"
 #include "sundials_handles.hpp"
+#include "number_text.hpp"
 
 namespace sphark {
 
@@ -41,12 +42,6 @@ namespace detail {
 namespace {
 
 enum Level { kSlow = 0, kFast = 1 };
-
-std::string at_time(Real t) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", t);
-  return buf;
-}
 
 class MriStepper final : public Stepper {
  public:

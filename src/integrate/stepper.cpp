@@ -12,15 +12,12 @@
 #include "collective_checks.hpp"
 #include "sphark/integrate/guarded_system.hpp"
 #include "steppers.hpp"
+#include "number_text.hpp"
 
 namespace sphark {
 namespace {
 
-std::string number_text(Real x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
+using detail::number_text;
 
 // option=value: why, thrown as std::invalid_argument if !ok (on every rank at once when the
 // run is distributed: the checks run in the same order everywhere).
