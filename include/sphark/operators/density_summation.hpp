@@ -78,6 +78,17 @@ Real solve_smoothing_length(Sums&& sums, Real h_start, Real h_list, Real m_eta, 
   return hh;
 }
 
+// Is h already a root to the tolerance of solve_smoothing_length (one Newton step from it would
+// move it by less than tol h)? For a restart that hands back the roots of the interrupted run.
+template <int D, class Sums>
+bool is_smoothing_length_root(Sums&& sums, Real h, Real m_eta, Real tol) {
+  Real r = 0, dr = 0;
+  sums(h, r, dr);
+  const Real rho_h = m_eta / std::pow(h, D);  // seed 000, eq. (5)
+  const Real f = r - rho_h, df = dr + D * rho_h / h;
+  return df > 0 && std::abs(f / df) < tol * h;
+}
+
 // After solve_smoothing_length returned h_found: does the root of f(h) = rho(h) - m (eta/h)^D lie
 // beyond h_list (the lists must then serve a larger h)? The iteration cannot leave (0, h_list]:
 // when the root lies beyond, it converges onto h_list itself (to within about tol). f increases
