@@ -6,18 +6,10 @@
 // from y (neighbour lists, density, h, ghosts) it recomputes, or reuses only when it is provably
 // the same (e.g. memoised on the exact content of y). Nothing a callback returns depends on
 // which callback ran before, with one admitted exception: an iterative solve may start from its
-// previous answer (SPMHD's h: Newton from the last h), and its converged answer then depends on
-// that start at the solve's round-off. Such a system returns the start as resume_data(), the
-// checkpoints carry it, and resume() restores it, so that a restart continues bit for bit.
-//
-// Return codes of rhs()/stiff_diagonal()/roots(): 0 success, > 0 recoverable (the stepper
-// retries with a smaller step), < 0 fatal, with last_error() saying why. A callback may also
-// throw: the stepper catches every exception at the C boundary (the one net; nothing crosses
-// into SUNDIALS) and reports it as a fatal failure with its message.
-//
-// The stepper guards every call (integrate/guarded_system.hpp): a non-finite or non-physical
-// state y (density <= 0, internal energy < 0) and a non-finite derivative are recoverable
-// failures naming the particles concerned, so a scheme does not check them itself.
+// previous answer (the h of SPMHD and of the ghost-wall WCSPH: Newton from the last h), and its
+// converged answer then depends on that start at the solve's round-off. Such a system returns
+// the start as resume_data(), the checkpoints carry it, and resume() restores it, so that a
+// restart continues bit for bit.
 #include <cstddef>
 #include <limits>
 #include <span>

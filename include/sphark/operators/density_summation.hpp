@@ -110,10 +110,13 @@ bool root_beyond_list(Sums&& sums, Real h_found, Real h_list, Real m_eta, Real t
 // solve extra particles (e.g. ghosts, whose own h is only a diagnostic) without letting a root
 // beyond the lists (an isolated ghost has none: h -> infinity) force rebuilds; their h then stays
 // at h_list.
+// Particles i < n_given (default none) keep h[i] where it is already a root
+// (is_smoothing_length_root): a restart hands back the roots of the interrupted run
+// (OdeSystem::resume), and a Newton step from a root would move it by round-off.
 template <int D, class K>
 DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, const Real* m, std::size_t n,
                                 Real eta, Real tol, Real h_list, Real* h, Real* rho, Real* omega,
-                                std::size_t n_checked) {
+                                std::size_t n_checked, std::size_t n_given = 0) {
   std::size_t not_converged = 0, outside = 0;
   Real h_max = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : not_converged, outside) reduction(max : h_max)
@@ -142,9 +145,10 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
         dr += ms[k] * kernel_dw_dh<D, K>(rs[k], hh);
       }
     };
-    bool converged = false;
     long iterations = 0;
-    Real hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations);
+    Real hh = h[i];
+    bool converged = i < n_given && hh <= h_list && is_smoothing_length_root<D>(sums, hh, m_eta, tol);
+    if (!converged) hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations);
     Real r = 0;
     if (!converged) ++not_converged;
     if (i < n_checked && root_beyond_list<D>(sums, hh, h_list, m_eta, tol)) ++outside;
