@@ -16,6 +16,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "sphark/core/types.hpp"
@@ -87,6 +90,18 @@ bool is_smoothing_length_root(Sums&& sums, Real h, Real m_eta, Real tol) {
   const Real rho_h = m_eta / std::pow(h, D);  // seed 000, eq. (5)
   const Real f = r - rho_h, df = dr + D * rho_h / h;
   return df > 0 && std::abs(f / df) < tol * h;
+}
+
+// The smoothing lengths a restart hands back (OdeSystem::resume): one per particle, each positive
+// and finite; otherwise std::invalid_argument "<who>: ..." saying which.
+inline void check_resumed_smoothing_lengths(std::span<const Real> h, std::size_t particles, const std::string& who) {
+  if (h.size() != particles)
+    throw std::invalid_argument(who + ": " + std::to_string(h.size()) + " smoothing lengths for " +
+                                std::to_string(particles) + " particles");
+  for (std::size_t i = 0; i < particles; ++i)
+    if (!(std::isfinite(h[i]) && h[i] > 0))
+      throw std::invalid_argument(who + ": the smoothing length of particle " + std::to_string(i) +
+                                  " is not positive and finite");
 }
 
 // After solve_smoothing_length returned h_found: does the root of f(h) = rho(h) - m (eta/h)^D lie

@@ -148,13 +148,7 @@ int GhostWcsph<K>::prepare(const Real* y) {
 template <class K>
 void GhostWcsph<K>::resume(std::span<const Real> h) {
   if (h.empty()) return;
-  if (h.size() != n_)
-    throw std::invalid_argument("GhostWcsph::resume: " + std::to_string(h.size()) + " smoothing lengths for " +
-                                std::to_string(n_) + " particles");
-  for (std::size_t i = 0; i < n_; ++i)
-    if (!(std::isfinite(h[i]) && h[i] > 0))
-      throw std::invalid_argument("GhostWcsph::resume: the smoothing length of particle " + std::to_string(i) +
-                                  " is not positive and finite");
+  check_resumed_smoothing_lengths(h, n_, "GhostWcsph::resume");
   std::copy(h.begin(), h.end(), h_.begin());
   h_given_ = true;  // the next solve takes them as the roots (solve_density's n_given)
   prepared_ = false;

@@ -11,6 +11,7 @@
 #include "sphark/integrate/callback_errors.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/conjugate_cleaning.hpp"
+#include "sphark/operators/density_summation.hpp"
 #include "sphark/operators/pair_geometry.hpp"
 
 namespace sphark {
@@ -79,13 +80,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
 template <int D, class K>
 void SpmhdScheme<D, K>::resume(std::span<const Real> h) {
   if (h.empty()) return;
-  if (h.size() != n_)
-    throw std::invalid_argument("SpmhdScheme::resume: " + std::to_string(h.size()) + " smoothing lengths for " +
-                                std::to_string(n_) + " gas particles");
-  for (std::size_t i = 0; i < n_; ++i)
-    if (!(std::isfinite(h[i]) && h[i] > 0))
-      throw std::invalid_argument("SpmhdScheme::resume: the smoothing length of particle " + std::to_string(i) +
-                                  " is not positive and finite");
+  check_resumed_smoothing_lengths(h, n_, "SpmhdScheme::resume");
   for (std::size_t s = 0; s < n_; ++s) h_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
   h_given_ = true;  // the next solve takes these h as its roots (spmhd_density.cpp)
   built_ = false;
