@@ -71,7 +71,7 @@ std::string ResumableVtkSeries::text() const {
   return s;
 }
 
-void ResumableVtkSeries::restore(const std::string& text) {
+void ResumableVtkSeries::restore(const std::string& text, const std::filesystem::path& earlier_dir) {
   std::vector<std::pair<Real, std::string>> frames;
   std::istringstream in(text);
   std::string line;
@@ -79,7 +79,10 @@ void ResumableVtkSeries::restore(const std::string& text) {
     const auto space = line.find(' ');
     if (space == std::string::npos || space + 1 >= line.size())
       throw std::runtime_error("malformed frame list line '" + line + "'");
-    frames.emplace_back(std::strtod(line.c_str(), nullptr), line.substr(space + 1));
+    std::string file = line.substr(space + 1);
+    if (!earlier_dir.empty() && !std::filesystem::exists(dir_ / file) && std::filesystem::exists(earlier_dir / file))
+      file = std::filesystem::relative(earlier_dir / file, dir_).generic_string();
+    frames.emplace_back(std::strtod(line.c_str(), nullptr), std::move(file));
   }
   frames_ = std::move(frames);
   write_file_atomically(pvd_path(), pvd_collection_xml(frames_));

@@ -165,7 +165,10 @@ void TimeLoop::restore(const Checkpoint& c) {
   if (c.scalar("checkpoint_every") != s_.checkpoint_every && s_.checkpoint_every > 0)
     next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
   csv_.restore(c.text("diagnostics.csv"));
-  if (vtk_) vtk_->restore(c.text("frames"));
+  if (vtk_) {  // frames_dir: absent in checkpoints of before 2026-12-02
+    const bool has_dir = std::any_of(c.texts.begin(), c.texts.end(), [](const auto& e) { return e.first == "frames_dir"; });
+    vtk_->restore(c.text("frames"), has_dir ? std::filesystem::path(c.text("frames_dir")) : std::filesystem::path{});
+  }
   opts_.initial_dt = c.last_dt;
   opts_.resume_data = c.stepper_data;
 }
@@ -205,7 +208,10 @@ void TimeLoop::save(Real time) {
   c.set_text("run", s_.run);
   for (const auto& [k, v] : s_.texts) c.set_text(k, v);
   c.set_text("diagnostics.csv", csv_.text());
-  if (vtk_) c.set_text("frames", vtk_->text());
+  if (vtk_) {
+    c.set_text("frames", vtk_->text());
+    c.set_text("frames_dir", std::filesystem::absolute(s_.frames_dir).string());
+  }
   c.y = y_;
   c.stepper_data = stepper_->resume_data();
   c.system_data = system_.resume_data();

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <regex>
 
 #include "../support/temp_dir.hpp"
 #include "run_example.hpp"
@@ -40,12 +41,30 @@ void expect_same_continuation(const Checkpoint& whole, const Checkpoint& restart
 }
 }  // namespace
 
+// The files a .pvd lists, relative to its own folder.
+std::vector<std::string> pvd_files(const std::filesystem::path& pvd) {
+  const std::string xml = slurp(pvd);
+  const std::regex file_re("file=\"([^\"]+)\"");
+  std::vector<std::string> files;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), file_re); it != std::sregex_iterator(); ++it)
+    files.push_back((*it)[1].str());
+  return files;
+}
+
 TEST(GravityRuns, RestartOfTheCollapseIsBitForBit) {
   TempDir dir;
   Checkpoint whole, restarted;
   ASSERT_TRUE(split_run("gravitating_sphere", sphere("off"), dir.path(), "gas", "uniform/checkpoint.bin", whole,
                         restarted, "0.5", "0.6"));
   expect_same_continuation(whole, restarted);
+  // the restart wrote into another --out: its series lists every frame of the run, the earlier
+  // ones where the first run wrote them, and each listed file opens
+  const std::filesystem::path second = dir.path() / "gas_second" / "uniform";
+  const std::vector<std::string> files = pvd_files(second / "sphere.pvd");
+  EXPECT_EQ(files.size(), pvd_files(dir.path() / "gas_whole" / "uniform" / "sphere.pvd").size());
+  ASSERT_FALSE(files.empty());
+  EXPECT_EQ(files.front(), "../../gas_first/uniform/sphere_00000.vtp");
+  for (const std::string& f : files) EXPECT_TRUE(std::filesystem::exists(second / f)) << f;
 }
 
 TEST(GravityRuns, RestartWithASinkIsBitForBit) {

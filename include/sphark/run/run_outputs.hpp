@@ -46,9 +46,12 @@ class ResumableVtkSeries {
   const std::vector<std::pair<Real, std::string>>& frames() const { return frames_; }
   std::filesystem::path pvd_path() const { return dir_ / (basename_ + ".pvd"); }
   // "t file" per line; restore() parses it (std::runtime_error for a malformed text) and
-  // rewrites the .pvd, so frames after the restart continue the numbering.
+  // rewrites the .pvd, so frames after the restart continue the numbering. `earlier_dir`: where
+  // the listed frames were written (a restart into another --out): each listed file found there
+  // and not here is then listed by its path relative to this directory, so that the new .pvd
+  // (and ParaView) finds every frame of the run.
   std::string text() const;
-  void restore(const std::string& text);
+  void restore(const std::string& text, const std::filesystem::path& earlier_dir = {});
 
  private:
   std::filesystem::path dir_;
