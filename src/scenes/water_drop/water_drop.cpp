@@ -34,6 +34,8 @@ class WcsphModelOf final : public WcsphModel {
   WcsphDiagnostics<2> diagnostics(Real t, const Real* y) override { return wcsph_diagnostics(sys_, t, y); }
   ParticleFrame frame(Real t, const Real* y) override { return frame_.build(sys_, t, y); }
   long neighbour_builds() const override { return sys_.neighbour_builds(); }
+  void distribute(Communicator comm, std::vector<std::int64_t> ids) override { sys_.distribute(std::move(comm), std::move(ids)); }
+  void set_particles(std::vector<std::int64_t> ids) override { sys_.set_particles(std::move(ids)); }
 
  private:
   WcsphSystem<2, Kernel> sys_;

@@ -57,6 +57,8 @@ class Halo {
   void exchange(std::vector<Real>& values, int components);
   // Collective: the most severe code of any rank, the failing ranks' messages in `message`.
   int agree(int code, std::string& message) const { return comm_.agree(code, message); }
+  // Collective: each of values[0 .. n) the maximum over the ranks.
+  void max_over_ranks(Real* values, std::size_t n) const { comm_.allreduce(values, n, ReduceOp::Max); }
   // Collective: true if `b` is true on every rank.
   bool on_every_rank(bool b) const { return comm_.allreduce(std::int64_t(b ? 1 : 0), ReduceOp::Min) == 1; }
 

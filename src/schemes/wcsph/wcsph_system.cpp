@@ -260,8 +260,6 @@ Real WcsphSystem<D, Kernel>::max_stable_dt(Real t, const Real* y, const Real* yd
     vmax = std::max(vmax, v.col(a).norm());
     cmax = std::max(cmax, tait_sound_speed(rho[a], p_.rho0, p_.sound_speed));
   }
-  // Courant condition with the viscous signal speed (Monaghan 1992), and the force condition.
-  Real dt = p_.cfl * p_.h / (cmax + vmax + 1.2 * p_.alpha * cmax);
   Real accel = 0;
   if (ydot) {
     accel = max_acceleration(ydot);
@@ -269,6 +267,17 @@ Real WcsphSystem<D, Kernel>::max_stable_dt(Real t, const Real* y, const Real* yd
     evaluate(t, y);
     accel = max_accel_;
   }
+  // Distributed: the maxima over every particle, so that dt is the serial run's bit for bit (a
+  // minimum of the ranks' dt would not be: cmax and vmax may be on different ranks).
+  Real maxima[3] = {vmax, cmax, accel};
+  if (halo_) halo_->max_over_ranks(maxima, 3);
+  return stable_dt(maxima[0], maxima[1], maxima[2]);
+}
+
+// Courant condition with the viscous signal speed (Monaghan 1992), and the force condition.
+template <int D, class Kernel>
+Real WcsphSystem<D, Kernel>::stable_dt(Real vmax, Real cmax, Real accel) const {
+  Real dt = p_.cfl * p_.h / (cmax + vmax + 1.2 * p_.alpha * cmax);
   if (accel > 0) dt = std::min(dt, p_.cfl * std::sqrt(p_.h / accel));
   return dt;
 }

@@ -108,6 +108,7 @@ class WcsphSystem final : public OdeSystem {
   // rhs() at y into scratch_ unless y is evaluated_y_ (then nothing: every derived array is y's).
   void evaluate(Real t, const Real* y);
   Real max_acceleration(const Real* ydot) const;
+  Real stable_dt(Real vmax, Real cmax, Real accel) const;
 
   WcsphParams<D> p_;
   StateLayout layout_;

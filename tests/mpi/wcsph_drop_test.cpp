@@ -1,0 +1,206 @@
+// The distributed WcsphSystem on the water drop (seed 000 §IV-D, 872 particles): 120 fixed
+// steps on 1-4 ranks, the particles scattered over the ranks at the start, migrated to their
+// RCB owners every 10 steps (repartitioned at steps 0 and 60; migrate() checks count, ids, mass
+// and momentum), Stepper::resize after each. Every field of every particle, matched by global
+// id (x, v, rho, psi of the state; pressure and div v of the frame), equals the serial run's
+// bit for bit (rows sorted by global id: the same terms in the same order), for
+// - the delta-SPH scheme with Antuono's correction and cleaning (per RHS: the halo plan check,
+//   the state's exchange, the renormalised density gradients' exchange), BS23 and leapfrog
+//   (its carried kick migrated along),
+// - the seed's plain scheme (delta = 0) with cleaning (no gradient exchange),
+// - Molteni & Colagrossi's uncorrected diffusion with viscosity, no cleaning (no psi).
+// An adaptive run (DP5, rtol 1e-6, steps capped by max_stable_dt: a collective RHS through the
+// memoised evaluation, and the maxima of |v|, c and |a| over every rank) equals a serial run
+// with reproducible norms bit for bit, steps included.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "mpi_env.hpp"
+#include "sphark/integrate/stepper.hpp"
+#include "sphark/parallel/decomposition.hpp"
+#include "sphark/parallel/migration.hpp"
+#include "sphark/scenes/water_drop/water_drop.hpp"
+
+namespace sphark {
+namespace {
+
+using testing::world;
+
+constexpr Real kDt = 2e-5;  // ~0.6 of the CFL limit 0.25 h / (c_s + |v|)
+constexpr const char* kErk = "ARKODE_BOGACKI_SHAMPINE_4_2_3";
+constexpr int kChunks = 12, kStepsPerChunk = 10, kRepartitionChunk = 6;
+
+WaterDropConfig small_drop() {
+  WaterDropConfig c;
+  c.spacing = 0.06;  // 872 particles
+  return c;
+}
+
+// Per particle by global id: x, y, vx, vy, rho, [psi,] pressure, div v.
+using Fields = std::map<std::int64_t, std::vector<Real>>;
+
+// The entries of the particles `ids` of a field-major state over every particle.
+std::vector<Real> select(const std::vector<Real>& y, const StateLayout& all, const std::vector<std::int64_t>& ids) {
+  std::vector<Real> out;
+  for (const Field f : all.fields()) {
+    const int c = all.components(f);
+    for (const std::int64_t id : ids)
+      for (int k = 0; k < c; ++k) out.push_back(y[all.offset(f) + c * static_cast<std::size_t>(id) + k]);
+  }
+  return out;
+}
+
+// The frame's fields (collective when distributed: div v and pressure evaluate the RHS).
+Fields collect(WcsphModel& model, Real t, const std::vector<Real>& y, const std::vector<std::int64_t>& ids) {
+  const ParticleFrame f = model.frame(t, y.data());
+  Fields out;
+  for (std::size_t a = 0; a < f.count; ++a) {
+    std::vector<Real>& row = out[ids[a]];
+    row = {f.positions[2 * a], f.positions[2 * a + 1]};
+    for (const PointArray& arr : f.arrays)
+      for (int k = 0; k < arr.components; ++k) row.push_back(arr.data[arr.components * a + k]);
+  }
+  return out;
+}
+
+struct Distributed {
+  Communicator comm;
+  std::vector<std::int64_t> ids;
+  Decomposition<2> dec;
+  Real mass;
+  std::size_t migrated = 0;  // particles sent by this rank after the start
+};
+
+// Moves every particle to its RCB owner (the decomposition recomputed when `repartition`)
+// with its state; the model and the stepper continue with this rank's new particles.
+void migrate_and_resize(Distributed& d, WcsphModel& model, std::vector<Real>& y, Stepper& stepper, bool repartition,
+                        bool start = false) {
+  const std::size_t n = d.ids.size();
+  if (repartition) d.dec = partition_rcb<2>(d.comm, y.data(), nullptr, n, std::nullopt);
+  std::vector<int> owner(n);
+  d.dec.owners(y.data(), n, owner.data());
+  std::vector<Real> mass(n, d.mass), carried = stepper.carried_data();  // leapfrog: its next kick's derivative
+  const StateLayout& L = model.layout();
+  std::vector<int> components;
+  for (const Field f : L.fields()) components.push_back(L.components(f));
+  ParticleData data;
+  data.ids = &d.ids;
+  data.arrays = {{&mass, 1}};
+  data.states = {{&y, components}};
+  if (!carried.empty()) data.states.push_back({&carried, components});
+  data.mass.array = 0;
+  data.velocity.state = 0;
+  data.velocity.field = 1;
+  data.dim = 2;
+  const std::size_t sent = migrate(d.comm, owner, data).sent;
+  if (!start) d.migrated += sent;
+  model.set_particles(d.ids);
+  stepper.resize({y.data(), nullptr, carried.empty() ? nullptr : carried.data()});
+}
+
+struct Outcome {
+  Fields fields;
+  long steps = 0;
+  std::size_t migrated = 0;
+};
+
+// The drop from t = 0 in kChunks advances of kStepsPerChunk steps (adaptive: of that time);
+// on comm with migrations between the advances.
+Outcome run(const WaterDropConfig& cfg, const Communicator& comm, const std::string& method, bool adaptive) {
+  WaterDrop drop = make_water_drop(cfg);
+  WcsphModel& model = *drop.model;
+  const StateLayout all = model.layout();
+  Distributed d{comm, {}, Decomposition<2>(), cfg.rho0 * cfg.spacing * cfg.spacing};
+  for (std::int64_t k = comm.rank(); k < static_cast<std::int64_t>(drop.particles()); k += comm.size()) d.ids.push_back(k);
+  std::vector<Real> y = drop.y0;
+  if (comm.distributed()) {
+    y = select(drop.y0, all, d.ids);
+    model.distribute(comm, d.ids);
+  }
+  StepperOptions o;
+  o.method = method;
+  if (!adaptive) o.fixed_dt = kDt;
+  o.rtol = 1e-6;
+  o.atol = {1e-6};
+  o.reproducible_norms = adaptive;
+  o.communicator = comm;
+  auto stepper = make_stepper(model.system(), o, 0.0, y.data());
+  if (comm.distributed()) migrate_and_resize(d, model, y, *stepper, true, true);  // scattered start to RCB domains
+  Real t = 0;
+  for (int k = 1; k <= kChunks; ++k) {
+    EXPECT_EQ(stepper->advance(k * kStepsPerChunk * kDt, y.data(), t), AdvanceStatus::Reached)
+        << stepper->failure_reason();
+    if (comm.distributed() && k < kChunks) migrate_and_resize(d, model, y, *stepper, k == kRepartitionChunk);
+  }
+  Outcome out{collect(model, t, y, d.ids), stepper->stats().steps, d.migrated};
+  return out;
+}
+
+// The distributed run against the serial one (on every rank): every particle once, every
+// field equal. Returns the largest relative difference (0: bit for bit).
+void check_drop(const std::string& name, const WaterDropConfig& cfg, const std::string& method = kErk,
+                bool adaptive = false) {
+  const Outcome serial = run(cfg, Communicator{}, method, adaptive), dist = run(cfg, world(), method, adaptive);
+  Real worst = 0;
+  std::int64_t missing = 0, unequal = 0;
+  for (const auto& [id, f] : dist.fields) {
+    const auto it = serial.fields.find(id);
+    if (it == serial.fields.end() || it->second.size() != f.size()) {
+      ++missing;
+      continue;
+    }
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      unequal += f[k] != it->second[k];
+      worst = std::max(worst, std::abs(f[k] - it->second[k]) / std::max(1.0, std::abs(it->second[k])));
+    }
+  }
+  worst = testing::global_max(worst);
+  const std::int64_t migrated = testing::global_sum(static_cast<std::int64_t>(dist.migrated));
+  EXPECT_EQ(testing::global_sum(missing), 0) << name;
+  EXPECT_EQ(testing::global_sum(static_cast<std::int64_t>(dist.fields.size())),
+            static_cast<std::int64_t>(serial.fields.size()));
+  EXPECT_EQ(testing::global_sum(unequal), 0) << name << ": max relative difference " << worst;
+  EXPECT_EQ(dist.steps, serial.steps) << name;
+  if (!adaptive) {
+    EXPECT_EQ(serial.steps, kChunks * kStepsPerChunk);
+  }
+  if (world().size() > 1) {
+    EXPECT_GT(migrated, 0);
+  }
+  if (world().rank() == 0)
+    std::printf("%s on %d ranks: %zu particles, %zu fields each, %ld steps, max relative difference to serial %.3g, "
+                "%lld particles migrated after the start\n",
+                name.c_str(), world().size(), serial.fields.size(), serial.fields.begin()->second.size(), dist.steps,
+                worst, static_cast<long long>(migrated));
+}
+
+TEST(WcsphDrop, DeltaSphCleanedMatchesSerialBitForBit) { check_drop("delta-SPH cleaned", small_drop()); }
+
+TEST(WcsphDrop, SeedSchemeMatchesSerialBitForBit) {
+  WaterDropConfig c = small_drop();
+  c.delta = 0;  // the seed's eqs. (26)-(28) with cleaning
+  check_drop("seed cleaned", c);
+}
+
+TEST(WcsphDrop, UncorrectedDiffusionWithViscosityMatchesSerialBitForBit) {
+  WaterDropConfig c = small_drop();
+  c.diffusion_correction = false;
+  c.cleaning = false;
+  c.alpha = 0.1;
+  check_drop("Molteni-Colagrossi control, alpha 0.1", c);
+}
+
+TEST(WcsphDrop, LeapfrogMatchesSerialBitForBit) {
+  check_drop("delta-SPH cleaned, leapfrog", small_drop(), "leapfrog");  // its carried kick migrates along
+}
+
+TEST(WcsphDrop, AdaptiveRunMatchesSerialWithReproducibleNorms) {
+  check_drop("delta-SPH cleaned, DP5", small_drop(), "ARKODE_DORMAND_PRINCE_7_4_5", true);
+}
+
+}  // namespace
+}  // namespace sphark
