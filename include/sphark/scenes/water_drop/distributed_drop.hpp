@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sphark/integrate/stepper.hpp"
+#include "sphark/diagnostics/wcsph_diagnostics.hpp"
 #include "sphark/parallel/decomposition.hpp"
 #include "sphark/scenes/water_drop/water_drop.hpp"
 
@@ -26,10 +27,13 @@ class DistributedDrop {
   std::size_t global_particles() const { return global_; }
   const Communicator& communicator() const { return comm_; }
 
-  // Collective. Every particle to the owner of its position (the domains recomputed first when
-  // `repartition`); migrate() checks count, ids, mass and momentum. The stepper then continues
-  // from this rank's new state; atol > 0: a run with per-entry tolerances
-  // (water_drop_absolute_tolerances of atol). Returns the particles this rank sent.
+  // Collective. Every particle to the owner of its position in y (this rank's state; the domains
+  // recomputed first when `repartition`), with y and `carried` (if not null: entries aligned
+  // with y, e.g. the leapfrog's carried kick); migrate() checks count, ids, mass and momentum.
+  // The model then holds this rank's new particles. Returns the particles this rank sent.
+  std::size_t migrate(std::vector<Real>& y, std::vector<Real>* carried, bool repartition);
+  // The same for state(), and the stepper continues from this rank's new state; atol > 0: a run
+  // with per-entry tolerances (water_drop_absolute_tolerances of atol).
   std::size_t migrate(Stepper& stepper, bool repartition, Real atol = 0);
 
  private:
@@ -40,5 +44,8 @@ class DistributedDrop {
   std::vector<Real> y_;
   std::size_t global_ = 0;
 };
+
+// Collective: the diagnostics of the whole drop from each rank's of its n particles.
+WcsphDiagnostics<2> reduce_diagnostics(const Communicator& comm, const WcsphDiagnostics<2>& local, std::size_t n);
 
 }  // namespace sphark

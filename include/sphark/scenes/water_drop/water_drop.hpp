@@ -43,6 +43,8 @@ struct SemiAxes {
   Real x, y;
 };
 SemiAxes measure_semi_axes(const Real* positions, std::size_t n);
+// Collective: of the particles of every rank (n on this one).
+SemiAxes measure_semi_axes(const Communicator& comm, const Real* positions, std::size_t n);
 
 // Common interface of the WCSPH system whatever its kernel (chosen at run time by name).
 class WcsphModel {
