@@ -45,7 +45,7 @@ class DropRun final : public SceneRun {
   // recomputed every kRepartitionEvery steps).
   bool changes_particles() const override { return dist_ != nullptr; }
   std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y) override;
-  static constexpr long kMigrateEvery = 10, kRepartitionEvery = 200;
+  static constexpr long kMigrateEvery = 50, kRepartitionEvery = 200;
 
   // The summary of the run (complete after the loop ended: pass its result).
   DropRunSummary summary(const TimeLoopResult& result) const;
