@@ -153,6 +153,8 @@ std::string encode_checkpoint(const Checkpoint& c) {
   w.bytes().append(reinterpret_cast<const char*>(c.y.data()), c.y.size() * sizeof(Real));
   w.pod<std::uint64_t>(c.stepper_data.size());
   w.bytes().append(reinterpret_cast<const char*>(c.stepper_data.data()), c.stepper_data.size() * sizeof(Real));
+  w.pod<std::uint64_t>(c.system_data.size());
+  w.bytes().append(reinterpret_cast<const char*>(c.system_data.data()), c.system_data.size() * sizeof(Real));
   w.pod<std::uint64_t>(fnv1a(w.bytes().data(), w.bytes().size()));
   return std::move(w.bytes());
 }
@@ -164,7 +166,7 @@ Checkpoint decode_checkpoint(const std::string& b) {
   Reader head(b, b.size());
   head.skip(sizeof kMagic);
   const auto version = head.pod<std::uint32_t>("version");
-  if (version != kCheckpointVersion && version != 1)
+  if (version != kCheckpointVersion && version != 1 && version != 2)
     throw std::runtime_error("unsupported checkpoint version " + std::to_string(version) + " (this build reads " +
                              std::to_string(kCheckpointVersion) + ")");
   if (head.pod<std::uint32_t>("byte order") != kByteOrder)
@@ -214,6 +216,10 @@ Checkpoint decode_checkpoint(const std::string& b) {
   for (Real& v : c.y) v = r.pod<double>("state");
   c.stepper_data.resize(r.count("stepper data", sizeof(Real)));
   for (Real& v : c.stepper_data) v = r.pod<double>("stepper data");
+  if (version >= 3) {
+    c.system_data.resize(r.count("system data", sizeof(Real)));
+    for (Real& v : c.system_data) v = r.pod<double>("system data");
+  }
   if (r.pos() != end) throw std::runtime_error("trailing bytes after the state");
   std::size_t expected = 0;
   for (const auto& sp : c.species)

@@ -113,6 +113,7 @@ class TimeLoop {
   void checkpoint_if_due();
   void finish();
 
+  OdeSystem& system_;
   const TimeLoopSettings& s_;
   const TimeLoopHooks& hooks_;
   StepperOptions opts_;
@@ -133,7 +134,7 @@ class TimeLoop {
 
 TimeLoop::TimeLoop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
                    const TimeLoopSettings& s, const TimeLoopHooks& hooks)
-    : s_(s), hooks_(hooks), opts_(std::move(opts)), t_end_(snap_to_grid(s.t_end, s.sample_every)),
+    : system_(system), s_(s), hooks_(hooks), opts_(std::move(opts)), t_end_(snap_to_grid(s.t_end, s.sample_every)),
       frame_every_(s.frame_every > 0 ? s.frame_every : t_end_), csv_(s.diagnostics_csv, s.columns),
       next_checkpoint_(s.checkpoint_every), y_(std::move(y0)), layout_(initial_layout) {
   res_.program = s.program;
@@ -144,6 +145,7 @@ TimeLoop::TimeLoop(OdeSystem& system, const StateLayout& initial_layout, Stepper
   if (y_.size() != layout_.size()) throw std::invalid_argument("run_time_loop: initial state does not fit the layout");
   if (s.restart) restore(*s.restart);
   bound_steps(system);
+  if (s.restart) system.resume(s.restart->system_data);  // after bound_steps: its evaluation moves the starts
   stepper_ = make_stepper(system, opts_, t_, y_.data());
 }
 
@@ -229,6 +231,7 @@ void TimeLoop::save(Real time) {
   if (vtk_) c.set_text("frames", vtk_->text());
   c.y = y_;
   c.stepper_data = stepper_->resume_data();
+  c.system_data = system_.resume_data();
   flush_csv();
   res_.checkpoint = s_.checkpoint;
   save_checkpoint(s_.checkpoint, c);

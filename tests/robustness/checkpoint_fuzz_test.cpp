@@ -1,4 +1,4 @@
-// Fuzz of the checkpoint reader, version 2 (species), and of --restart (issue #21):
+// Fuzz of the checkpoint reader, the current version (species, system data), and of --restart (issue #21):
 //  - every truncation and every byte flipped (three masks) of a gas + sink checkpoint: without
 //    the checksum repaired every one is an error; with the checksum repaired (the structure
 //    itself corrupt) each decodes or fails with std::runtime_error, never anything else (no
@@ -38,6 +38,7 @@ Checkpoint two_species() {
   c.set_text("diagnostics.csv", "t,e\n0,1\n");
   for (std::size_t k = 0; k < L.size(); ++k) c.y.push_back(0.5 * static_cast<Real>(k));
   c.stepper_data = {1, 2, 3};
+  c.system_data = {0.5, 0.25};
   return c;
 }
 
@@ -69,7 +70,7 @@ std::string decode_outcome(const std::string& bytes) {
 
 }  // namespace
 
-TEST(CheckpointFuzz, EveryTruncationAndFlippedByteOfAVersion2FileIsCaught) {
+TEST(CheckpointFuzz, EveryTruncationAndFlippedByteOfACurrentFileIsCaught) {
   const std::string good = encode_checkpoint(two_species());
   ASSERT_EQ(decode_outcome(good), "ok");
   ASSERT_EQ(decode_checkpoint(good).species.size(), 2u);

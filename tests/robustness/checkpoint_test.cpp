@@ -37,6 +37,7 @@ Checkpoint sample() {
   c.y[1] = -0.0;
   c.y[2] = std::numeric_limits<Real>::max();
   c.stepper_data = {1.0 / 3.0, std::numeric_limits<Real>::quiet_NaN()};
+  c.system_data = {0.125, 1.0 / 7.0, -0.0};
   return c;
 }
 
@@ -71,6 +72,8 @@ TEST(Checkpoint, RoundTripIsBitExact) {
   EXPECT_EQ(r.scalar("sample"), 42);
   for (std::size_t k = 0; k < c.y.size(); ++k) EXPECT_TRUE(same_bits(r.y[k], c.y[k])) << k;
   for (std::size_t k = 0; k < c.stepper_data.size(); ++k) EXPECT_TRUE(same_bits(r.stepper_data[k], c.stepper_data[k]));
+  ASSERT_EQ(r.system_data.size(), c.system_data.size());
+  for (std::size_t k = 0; k < c.system_data.size(); ++k) EXPECT_TRUE(same_bits(r.system_data[k], c.system_data[k]));
   EXPECT_FALSE(layout_mismatch(r, layout3()).has_value());
 }
 
@@ -169,4 +172,27 @@ TEST(Checkpoint, VersionOneReadsAsOneGasSpecies) {
   L.add(Field::Position, 2);
   EXPECT_FALSE(layout_mismatch(c, L).has_value());
   EXPECT_EQ(c.y[5], 5.0);
+}
+
+// A version-2 file (before the system's resume data) still loads, with no system data: the file
+// of version 3 without its last count, under version number 2.
+TEST(Checkpoint, VersionTwoReadsWithoutSystemData) {
+  Checkpoint c = sample();
+  c.system_data.clear();
+  std::string b = encode_checkpoint(c);
+  b.erase(b.size() - 16, 8);  // the system data's count (0), just before the checksum
+  const auto with_version = [&b](std::uint32_t version) {  // and the checksum recomputed
+    std::memcpy(b.data() + 8, &version, sizeof version);
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::size_t i = 0; i + 8 < b.size(); ++i) h = (h ^ static_cast<unsigned char>(b[i])) * 1099511628211ull;
+    std::memcpy(b.data() + b.size() - 8, &h, sizeof h);
+    return b;
+  };
+  const Checkpoint r = decode_checkpoint(with_version(2));
+  EXPECT_TRUE(r.system_data.empty());
+  EXPECT_EQ(r.stepper_data.size(), c.stepper_data.size());
+  EXPECT_EQ(r.y.size(), c.y.size());
+  EXPECT_EQ(r.texts, c.texts);
+  // the same bytes as version 3 are one count short: rejected, not misread
+  EXPECT_THROW(decode_checkpoint(with_version(3)), std::runtime_error);
 }

@@ -98,11 +98,12 @@ TEST(LatticeRuns, LeapfrogRestartMatchesTheUninterruptedRun) {
   }
   std::printf("cylinder_lattice restart vs uninterrupted at t=%g: max |dy| %.3g (max |y| %.3g), bit-identical: %s\n", a.t,
               d, scale, a.y == b.y ? "yes" : "no");
-  // Round-off, not bit for bit: LatticeSystem keeps state outside y across steps (the h-rho
-  // Newton solve starts from the previous RHS's h, and the neighbour-search radius from its
-  // largest h), which a restart rebuilds from the uniform first guess; h then converges to the
-  // same root (quadratically, far below h_tol = 1e-7) but not to the same last bit.
-  EXPECT_LT(d, 1e-12 * scale);
+  // Bit for bit: the h-rho solve starts Newton from the previous h, which the checkpoint carries
+  // (OdeSystem::resume_data; before, the restart started from the uniform first guess and agreed
+  // to 3.75e-15 only).
+  EXPECT_TRUE(a.y == b.y);
+  EXPECT_EQ(a.system_data, b.system_data);
+  EXPECT_EQ(a.system_data.size(), a.particles());
 }
 
 TEST(LatticeRuns, SigintLeavesALoadableCheckpointNamingTheMap) {

@@ -132,5 +132,40 @@ TEST(SpmhdDeterminism, NoNeighbourAllocationAfterTheFirstCall) {
   EXPECT_EQ(sc.scheme.neighbours().allocations(), allocations);
 }
 
+// A restart (ode_system.hpp, resume_data): a scheme that never saw the run's history, handed the
+// h of the interrupted run, evaluates the checkpoint's state and every later one exactly as the
+// interrupted run does, although its own h solve would start elsewhere (from the lattice).
+TEST(SpmhdDeterminism, ResumedSchemeContinuesBitForBit) {
+  Scene run;
+  const std::vector<Real> y1 = compressed(run, 0.002), y2 = compressed(run, 0.004, 2);
+  run.rhs(run.y0);
+  const std::vector<Real> at_checkpoint = run.rhs(y1);
+  const std::vector<Real> h = run.scheme.resume_data();
+  ASSERT_EQ(h, run.scheme.h());
+  const std::vector<Real> after = run.rhs(y2);
+
+  Scene restarted;
+  restarted.scheme.resume(h);
+  EXPECT_EQ(restarted.scheme.h(), h);
+  expect_identical(restarted.rhs(y1), at_checkpoint);  // the given h are the roots: no Newton step
+  EXPECT_EQ(restarted.scheme.h(), h);
+  expect_identical(restarted.rhs(y2), after);
+  EXPECT_EQ(restarted.scheme.h(), run.scheme.h());
+}
+
+TEST(SpmhdDeterminism, ResumeRejectsSmoothingLengthsThatDoNotFit) {
+  Scene sc;
+  const std::size_t n = sc.scheme.h().size();
+  EXPECT_THROW(sc.scheme.resume(std::vector<Real>(n - 1, 0.01)), std::invalid_argument);
+  std::vector<Real> h(n, 0.01);
+  h[3] = 0;
+  EXPECT_THROW(sc.scheme.resume(h), std::invalid_argument);
+  h[3] = std::nan("");
+  EXPECT_THROW(sc.scheme.resume(h), std::invalid_argument);
+  sc.scheme.resume({});  // an older checkpoint without them: the scheme keeps its own start
+  Scene untouched;
+  expect_identical(sc.rhs(sc.y0), untouched.rhs(untouched.y0));
+}
+
 }  // namespace
 }  // namespace sphark

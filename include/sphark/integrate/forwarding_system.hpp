@@ -23,6 +23,8 @@ class ForwardingSystem : public OdeSystem {
   int num_roots() const override { return inner_.num_roots(); }
   int roots(Real t, const Real* y, Real* g) override { return inner_.roots(t, y, g); }
   std::string last_error() const override { return inner_.last_error(); }
+  std::vector<Real> resume_data() const override { return inner_.resume_data(); }
+  void resume(std::span<const Real> data) override { inner_.resume(data); }
   std::size_t num_particles() const override { return inner_.num_particles(); }
   std::vector<std::size_t> entry_particles() const override { return inner_.entry_particles(); }
   bool supports_subsets() const override { return inner_.supports_subsets(); }

@@ -5,16 +5,11 @@
 // Every callback is a function of its arguments (t, y [, ydot]) alone: what a scheme derives
 // from y (neighbour lists, density, h, ghosts) it recomputes, or reuses only when it is provably
 // the same (e.g. memoised on the exact content of y). Nothing a callback returns depends on
-// which callback ran before.
-//
-// Return codes of rhs()/stiff_diagonal()/roots(): 0 success, > 0 recoverable (the stepper
-// retries with a smaller step), < 0 fatal, with last_error() saying why. A callback may also
-// throw: the stepper catches every exception at the C boundary (the one net; nothing crosses
-// into SUNDIALS) and reports it as a fatal failure with its message.
-//
-// The stepper guards every call (integrate/guarded_system.hpp): a non-finite or non-physical
-// state y (density <= 0, internal energy < 0) and a non-finite derivative are recoverable
-// failures naming the particles concerned, so a scheme does not check them itself.
+// which callback ran before, with one admitted exception: an iterative solve may start from its
+// previous answer (the h of SPMHD and of the ghost-wall WCSPH: Newton from the last h), and its
+// converged answer then depends on that start at the solve's round-off. Such a system returns
+// the start as resume_data(), the checkpoints carry it, and resume() restores it, so that a
+// restart continues bit for bit.
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -69,6 +64,14 @@ class OdeSystem {
 
   // Human-readable reason of the last non-zero return (for the run summary).
   virtual std::string last_error() const { return {}; }
+
+  // Restart: what the next call starts from besides (t, y) (see the top of this file), e.g. the
+  // previous h of every particle, in particle order; empty: nothing. resume(data) with what
+  // resume_data() returned restores it before the restarted run's first step; empty data (an
+  // older checkpoint) keeps the system's own start. resume throws std::invalid_argument for
+  // data that does not fit (wrong length, non-physical values).
+  virtual std::vector<Real> resume_data() const { return {}; }
+  virtual void resume(std::span<const Real> /*data*/) {}
 
   // --- Particles: the unit of work (StepperStats::particle_evals) and of multirate stepping.
   // Particles are numbered 0 .. num_particles()-1, species after species in layout order.

@@ -78,6 +78,17 @@ Real solve_smoothing_length(Sums&& sums, Real h_start, Real h_list, Real m_eta, 
   return hh;
 }
 
+// Is h already a root to the tolerance of solve_smoothing_length (one Newton step from it would
+// move it by less than tol h)? For a restart that hands back the roots of the interrupted run.
+template <int D, class Sums>
+bool is_smoothing_length_root(Sums&& sums, Real h, Real m_eta, Real tol) {
+  Real r = 0, dr = 0;
+  sums(h, r, dr);
+  const Real rho_h = m_eta / std::pow(h, D);  // seed 000, eq. (5)
+  const Real f = r - rho_h, df = dr + D * rho_h / h;
+  return df > 0 && std::abs(f / df) < tol * h;
+}
+
 // After solve_smoothing_length returned h_found: does the root of f(h) = rho(h) - m (eta/h)^D lie
 // beyond h_list (the lists must then serve a larger h)? The iteration cannot leave (0, h_list]:
 // when the root lies beyond, it converges onto h_list itself (to within about tol). f increases
@@ -99,10 +110,13 @@ bool root_beyond_list(Sums&& sums, Real h_found, Real h_list, Real m_eta, Real t
 // solve extra particles (e.g. ghosts, whose own h is only a diagnostic) without letting a root
 // beyond the lists (an isolated ghost has none: h -> infinity) force rebuilds; their h then stays
 // at h_list.
+// Particles i < n_given (default none) keep h[i] where it is already a root
+// (is_smoothing_length_root): a restart hands back the roots of the interrupted run
+// (OdeSystem::resume), and a Newton step from a root would move it by round-off.
 template <int D, class K>
 DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, const Real* m, std::size_t n,
                                 Real eta, Real tol, Real h_list, Real* h, Real* rho, Real* omega,
-                                std::size_t n_checked) {
+                                std::size_t n_checked, std::size_t n_given = 0) {
   std::size_t not_converged = 0, outside = 0;
   Real h_max = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : not_converged, outside) reduction(max : h_max)
@@ -131,9 +145,10 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
         dr += ms[k] * kernel_dw_dh<D, K>(rs[k], hh);
       }
     };
-    bool converged = false;
     long iterations = 0;
-    Real hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations);
+    Real hh = h[i];
+    bool converged = i < n_given && hh <= h_list && is_smoothing_length_root<D>(sums, hh, m_eta, tol);
+    if (!converged) hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations);
     Real r = 0;
     if (!converged) ++not_converged;
     if (i < n_checked && root_beyond_list<D>(sums, hh, h_list, m_eta, tol)) ++outside;

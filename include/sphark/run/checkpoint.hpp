@@ -14,6 +14,7 @@
 //             u64 n, n x (str name, str text)     -- named texts (e.g. the diagnostics so far)
 //             u64 n, n x f64 state values (N_Vector contents)
 //             u64 n, n x f64 stepper resume data (Stepper::resume_data(); may be empty)
+//             (version 3:) u64 n, n x f64 system resume data (OdeSystem::resume_data(); may be empty)
 //   u64 FNV-1a 64 checksum of every byte before it
 // str = u64 length + bytes. Reals are stored as their IEEE-754 bits: a load returns exactly
 // the values saved. The file is written atomically (temporary file + rename), so a killed run
@@ -30,7 +31,7 @@
 
 namespace sphark {
 
-inline constexpr std::uint32_t kCheckpointVersion = 2;
+inline constexpr std::uint32_t kCheckpointVersion = 3;  // 1 and 2 are still read
 
 struct CheckpointField {
   std::string name;
@@ -55,6 +56,7 @@ struct Checkpoint {
   std::vector<std::pair<std::string, std::string>> texts;
   std::vector<Real> y;
   std::vector<Real> stepper_data;       // Stepper::resume_data() (leapfrog: bit-exact restart)
+  std::vector<Real> system_data;        // OdeSystem::resume_data() (SPMHD: the h solve's starts)
 
   // Particles of the first species (0 without species).
   std::size_t particles() const { return species.empty() ? 0 : species.front().particles; }

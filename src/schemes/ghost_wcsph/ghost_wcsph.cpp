@@ -78,12 +78,16 @@ int GhostWcsph<K>::solve_densities(std::size_t total) {
   for (int attempt = 0; attempt < kMaxRetries; ++attempt) {
     search_.build(xall_.data(), total, r_build);
     const DensitySolveStats st = solve_density<2, K>(search_, xall_.data(), mass_.data(), total, p_.eta, p_.h_tol,
-                                                     r_build / K::support, h_.data(), rho_.data(), omega_.data(), n_);
+                                                     r_build / K::support, h_.data(), rho_.data(), omega_.data(), n_,
+                                                     h_given_ ? n_ : 0);
     if (st.not_converged > 0) {
       error_ = "h-rho solve did not converge for " + std::to_string(st.not_converged) + " particle(s)";
       return 1;
     }
-    if (st.outside_list == 0) return 0;
+    if (st.outside_list == 0) {
+      h_given_ = false;
+      return 0;
+    }
     if (r_build >= r_cap) {
       error_ = "support radius 2h exceeds half the box (h = " + std::to_string(st.h_max) + ")";
       return 1;
@@ -139,6 +143,21 @@ int GhostWcsph<K>::prepare(const Real* y) {
     error_ = "ghost layer width did not settle";
     return 1;
   }
+}
+
+template <class K>
+void GhostWcsph<K>::resume(std::span<const Real> h) {
+  if (h.empty()) return;
+  if (h.size() != n_)
+    throw std::invalid_argument("GhostWcsph::resume: " + std::to_string(h.size()) + " smoothing lengths for " +
+                                std::to_string(n_) + " particles");
+  for (std::size_t i = 0; i < n_; ++i)
+    if (!(std::isfinite(h[i]) && h[i] > 0))
+      throw std::invalid_argument("GhostWcsph::resume: the smoothing length of particle " + std::to_string(i) +
+                                  " is not positive and finite");
+  std::copy(h.begin(), h.end(), h_.begin());
+  h_given_ = true;  // the next solve takes them as the roots (solve_density's n_given)
+  prepared_ = false;
 }
 
 template <class K>

@@ -111,6 +111,7 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(const Real* x) {
     ScopedPhase timer(Phase::DensityH);
     const DensityStats st = solve_density(x);
     if (st.outside_list == 0) {
+      h_given_ = false;
       if (st.not_converged == 0) return 0;
       error_ = "density: h iteration did not converge for " + std::to_string(st.not_converged) + " particle(s)";
       return 1;  // recoverable: a smaller step moves the particles less
@@ -178,7 +179,11 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       const Real m_eta = m[i] * eta_d;
       bool converged = false;
       Real r = 0, dr = 0;
-      Real hh = solve_smoothing_length<D>(density_at, h_[i], h_list, m_eta, tol, converged, iterations);
+      // After resume(): h_ is the root the interrupted run found here (density_at(h) below then gives
+      // that run's rho and Omega bit for bit), kept if it is one; a Newton step would move it.
+      Real hh = h_[i];
+      converged = h_given_ && hh <= h_list && is_smoothing_length_root<D>(density_at, hh, m_eta, tol);
+      if (!converged) hh = solve_smoothing_length<D>(density_at, h_[i], h_list, m_eta, tol, converged, iterations);
       if (!converged) ++not_converged;
       density_at(hh, r, dr);
       h_[i] = hh;

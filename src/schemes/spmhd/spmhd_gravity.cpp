@@ -7,6 +7,12 @@
 // The pair sums run over the scheme's neighbour lists (minimum image in a periodic box; the tree
 // uses the positions as given: isolated gravity, see docs/gravity.md). Gather form: each particle
 // writes only its own acceleration, results independent of the thread count.
+//
+// The tree and every sum of the solvers depend on the order of their input, and the slots' order
+// depends on when the lists were last built (the call history). So the solvers see the sources in
+// particle (state) order, and their accelerations and potentials stay in particle order: the same
+// y gives the same gravity bit for bit, whatever ran before (a restart continues bit for bit).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -40,8 +46,14 @@ template <int D, class K>
 void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only) {
   if constexpr (D == 3) {
     ScopedPhase timer(Phase::Forces);
-    const GravitySources src{x_.data(), ms_.data(), h_.data(), n_};
-    potential_energy_ = gravity_->compute(src, gravity_acc_.data(), gravity_potential_.data());
+    gravity_x_.resize(3 * n_);
+    gravity_h_.resize(n_);
+    for (std::size_t s = 0; s < n_; ++s) {
+      const std::size_t p = perm_[s];
+      std::copy_n(x_.data() + 3 * s, 3, gravity_x_.data() + 3 * p);
+      gravity_h_[p] = h_[s];
+    }
+    potential_energy_ = gravity_->compute(gravity_sources(), gravity_acc_.data(), gravity_potential_.data());
     gravitational_zeta();
     const NeighbourList& L = ns_.list();
     const Real* x = x_.data();
@@ -52,7 +64,7 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
     for (std::size_t i = 0; i < rows; ++i) {
       const std::size_t a = only ? (*only)[i] : i;
       const Real ha = h_[a];
-      Vec<3> acc = Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * a);
+      Vec<3> acc = Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * perm_[a]);
       for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
         const std::size_t b = L.indices[k];
         const Vec<3> x_ab = ns_.separation(x, a, b);

@@ -76,6 +76,23 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   }
 }
 
+template <int D, class K>
+void SpmhdScheme<D, K>::resume(std::span<const Real> h) {
+  if (h.empty()) return;
+  if (h.size() != n_)
+    throw std::invalid_argument("SpmhdScheme::resume: " + std::to_string(h.size()) + " smoothing lengths for " +
+                                std::to_string(n_) + " gas particles");
+  for (std::size_t i = 0; i < n_; ++i)
+    if (!(std::isfinite(h[i]) && h[i] > 0))
+      throw std::invalid_argument("SpmhdScheme::resume: the smoothing length of particle " + std::to_string(i) +
+                                  " is not positive and finite");
+  for (std::size_t s = 0; s < n_; ++s) h_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
+  h_given_ = true;  // the next solve takes these h as its roots (spmhd_density.cpp)
+  built_ = false;
+  ++version_;
+  evaluated_version_ = -1;
+}
+
 // Every per-particle buffer for n_ particles (h_ and x_ are set by the caller), slots = particles.
 template <int D, class K>
 void SpmhdScheme<D, K>::allocate_per_particle() {

@@ -25,7 +25,7 @@ void SpmhdScheme<D, K>::sink_pass(const Real* y, Real* ydot) {
     sink_potential_.assign(ns, 0);
     gas_from_sinks_.assign(3 * n_, 0);
     const PointMasses sinks{xs, ms, ns};
-    const GravitySources gas{x_.data(), ms_.data(), h_.data(), n_};
+    const GravitySources gas = gravity_sources();  // particle order, as the self-gravity's (spmhd_gravity.cpp)
     Real energy = sink_gas_.add(opt_.G, sinks, gas, opt_.sink_softening, gas_from_sinks_.data(),
                                 gravity_potential_.data(), sink_acc_.data(), sink_potential_.data());
     energy += add_sink_sink_gravity<K>(opt_.G, sinks, opt_.sink_softening, sink_acc_.data(), sink_potential_.data());
@@ -33,7 +33,7 @@ void SpmhdScheme<D, K>::sink_pass(const Real* y, Real* ydot) {
     Real* dv_dt = ydot + layout_.offset(Field::Velocity);
 #pragma omp parallel for schedule(static)
     for (std::size_t a = 0; a < n_; ++a)
-      Eigen::Map<Vec<3>>(dv_dt + 3 * perm_[a]) += Eigen::Map<const Vec<3>>(gas_from_sinks_.data() + 3 * a);
+      Eigen::Map<Vec<3>>(dv_dt + 3 * a) += Eigen::Map<const Vec<3>>(gas_from_sinks_.data() + 3 * a);
     std::copy(vs, vs + 3 * ns, ydot + layout_.offset(Species::Sink, Field::Position));
     std::copy(sink_acc_.begin(), sink_acc_.end(), ydot + layout_.offset(Species::Sink, Field::Velocity));
     std::fill_n(ydot + layout_.offset(Species::Sink, Field::Mass), ns, 0.0);

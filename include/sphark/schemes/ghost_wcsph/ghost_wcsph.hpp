@@ -75,6 +75,13 @@ class GhostWcsph : public OdeSystem {
   int num_roots() const override { return 2; }
   int roots(Real t, const Real* y, Real* g) override;
   std::string last_error() const override { return error_; }
+  // Restart (ode_system.hpp): each h-rho solve starts Newton from the previous h of the real
+  // particles, so the converged h depends on that start at round-off; resume_data() is that h,
+  // resume(h) hands it back (positive, finite, one per particle) and the next solve takes each as
+  // the root where it is one. (The ghosts' own h, the accumulation diagnostic, start from their
+  // source's h and are solved again.)
+  std::vector<Real> resume_data() const override { return {h_.begin(), h_.begin() + static_cast<std::ptrdiff_t>(n_)}; }
+  void resume(std::span<const Real> h) override;
 
   // Ghosts, densities and h of state y (what rhs() does before the forces); 0 ok, else error.
   int prepare(const Real* y);
@@ -113,6 +120,7 @@ class GhostWcsph : public OdeSystem {
   std::vector<Real> x_prepared_;  // positions of the last prepare()
   std::vector<Real> evaluated_y_, scratch_;  // the state of the last rhs(); its derivative buffer
   bool prepared_ = false;
+  bool h_given_ = false;  // set by resume(): the next solve takes the real particles' h as roots
   Real width_ = 0, max_accel_ = 0, h_min_ = 0;
   Vec<2> wall_force_ = Vec<2>::Zero();
   long rhs_calls_ = 0;

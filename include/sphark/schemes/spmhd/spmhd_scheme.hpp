@@ -121,6 +121,14 @@ class SpmhdScheme final : public OdeSystem {
   // moves the state (resize_species) and the stepper (Stepper::resize).
   void change_particles(const std::vector<std::size_t>& kept, std::size_t sinks);
 
+  // Restart (ode_system.hpp): each h solve starts Newton from the previous h, so the converged h
+  // depends on that start at the tolerance's round-off; the checkpoint carries it. resume_data()
+  // is h() (particle order); resume(h) sets the starts (positive and finite, one per gas particle)
+  // and rebuilds the lists at the next evaluation, which takes them as the roots (no Newton step:
+  // the interrupted run's rho and Omega at the checkpoint, bit for bit).
+  std::vector<Real> resume_data() const override { return h(); }
+  void resume(std::span<const Real> h) override;
+
   // The momentum budget of the RHS at y (diagnostics; refreshes the scheme at y, evaluate()):
   // `total` = sum_a m_a dv_a/dt over gas and sinks, and `tensile` its part from the tensile-
   // instability correction (seed 000, eq. (9)): -sum_a m_a B_a S_a, S_a the symmetric divergence
@@ -134,7 +142,7 @@ class SpmhdScheme final : public OdeSystem {
 
   // The barotropic EOS (options().barotropic), or nullptr for the adiabatic gas.
   const BarotropicEos* barotropic_eos() const { return eos_ ? &*eos_ : nullptr; }
-  const std::vector<Real>& potential() const { return in_particle_order(gravity_potential_, 1, out_potential_); }
+  const std::vector<Real>& potential() const { return gravity_potential_; }
 
   // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
   // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
@@ -179,7 +187,7 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> x_from_state_, v_, u_, psi_, alpha_;  // inputs gathered from the state (slot order)
   long version_ = 0;                                      // bumped by every prepare()
   mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_,
-      out_cleaning_speeds_, out_potential_;
+      out_cleaning_speeds_;
   SpmhdOptions opt_;
   StateLayout layout_;
   // the cell grid, or a kd-tree when the list radii span decades (a collapse): neighbours/neighbour_method.hpp
@@ -189,6 +197,7 @@ class SpmhdScheme final : public OdeSystem {
   // state's positions equal them bit for bit). Slot order, as all below.
   std::vector<Real> x_;
   std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
+  bool h_given_ = false;  // set by resume(): the next density solve takes h_ as the roots
   std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
   std::vector<Real> scratch_;
   std::vector<Real> subset_scratch_;           // rhs_subset: the sink forces of all particles
@@ -213,11 +222,13 @@ class SpmhdScheme final : public OdeSystem {
   std::size_t interacting_pairs_ = 0;
   double pairs_total_ = 0, h_iterations_ = 0;
   Real cleaning_speed_ = 0;         // global c_h (the largest c_h,a with local_ch)
-  // Self-gravity (opt_.self_gravity): the solver, its accelerations (D x n) and potentials, and
-  // zeta_a / Omega_a of the grad-h term, slot order.
+  // Self-gravity (opt_.self_gravity): the solver; its sources' positions and h, accelerations
+  // (D x n) and potentials in particle order (spmhd_gravity.cpp says why); zeta_a / Omega_a of
+  // the grad-h term, slot order.
   std::optional<BarotropicEos> eos_;  // opt_.barotropic
   std::unique_ptr<SelfGravity> gravity_;
-  std::vector<Real> gravity_acc_, gravity_potential_, zeta_over_omega_;
+  std::vector<Real> gravity_x_, gravity_h_, gravity_acc_, gravity_potential_, zeta_over_omega_;
+  GravitySources gravity_sources() const { return {gravity_x_.data(), m_.data(), gravity_h_.data(), n_}; }
   SinkGasGravity<K> sink_gas_;          // sink-gas gravity (opt_.sink_particles)
   std::vector<Real> sink_acc_, gas_from_sinks_, sink_potential_;
   Real potential_energy_ = 0;
