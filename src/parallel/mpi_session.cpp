@@ -1,5 +1,7 @@
 #include "sphark/parallel/mpi_session.hpp"
 
+#include <cstdlib>
+
 #include <cstdio>
 #include <exception>
 
@@ -19,6 +21,12 @@ MpiSession::~MpiSession() {
 }
 
 bool MpiSession::built_with_mpi() { return detail::mpi_built(); }
+
+bool MpiSession::launched_by_mpirun() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
 
 int MpiSession::run(const std::function<int(const Communicator&)>& body, int failure_code) const {
   try {

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 
@@ -121,20 +122,27 @@ int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Che
   const TimeLoopHooks hooks = hooks_of(*run, watchdog);
   TimeLoopSettings ts = default_settings(scene, name, p, dir, restart, *run);
   run->settings(ts);
+  const bool speaker = scene.world().rank() == 0;  // distributed: rank 0 prints
+  ts.quiet = ts.quiet || !speaker;
   const StepperOptions so = run->stepper(p.core, scene.program());
   // A restart takes its state from the checkpoint: the initial conditions are not built.
   std::vector<Real> y0 = restart ? std::vector<Real>(run->layout().size(), 0.0) : run->initial_state();
   const detail::PlannedCost& cost = p.costs.at(name);
-  if (cost.known && (!restart || restart->y.size() == y0.size()))
-    std::fprintf(stderr, "%s\n", detail::first_line(scene.program(), name, cost, *run, so, restart ? restart->t : 0,
-                                                      restart ? restart->y.data() : y0.data(), p.core.t_end).c_str());
-  std::fprintf(stderr, "%s: %s run, %zu particles, %s -> %s\n", scene.program().c_str(), name.c_str(),
-               run->layout().particles(), describe(so).c_str(), dir.c_str());
+  if (cost.known && (!restart || restart->y.size() == y0.size())) {  // every rank: the line asks the system (collective)
+    const std::string line = detail::first_line(scene.program(), name, cost, *run, so, restart ? restart->t : 0,
+                                                restart ? restart->y.data() : y0.data(), p.core.t_end);
+    if (speaker) std::fprintf(stderr, "%s\n", line.c_str());
+  }
+  if (speaker)
+    std::fprintf(stderr, "%s: %s run, %zu particles%s, %s -> %s\n", scene.program().c_str(), name.c_str(),
+                 run->layout().particles(), scene.world().distributed() ? " on rank 0" : "", describe(so).c_str(),
+                 dir.c_str());
   const TimeLoopResult result = run_time_loop(run->system(), run->layout(), so, std::move(y0), ts, hooks);
   std::printf("%s %s: %s\n", scene.program().c_str(), name.c_str(), format_stats(result.stats).c_str());
   scene.finished(name, *run, result);
   if (result.status == TimeLoopStatus::Failed) why = result.failure;  // as report_time_loop_end prints it
-  return report_time_loop_end(result);
+  const int code = report_time_loop_end(result, speaker);
+  return code;
 }
 
 void write_paraview_states(const Scene& scene, const std::filesystem::path& out, const std::vector<std::string>& done) {
@@ -142,15 +150,51 @@ void write_paraview_states(const Scene& scene, const std::filesystem::path& out,
     write_paraview_state_or_warn(out / state.file, state.views);
 }
 
+// run.json, kept by rank 0 alone (the other ranks of a distributed run keep none).
+class RootRecord {
+ public:
+  RootRecord(bool root, const std::function<RunRecord()>& make) {
+    if (root) record_.emplace(make());
+  }
+  void set(const std::string& key, Json value) {
+    if (record_) record_->set(key, std::move(value));
+  }
+  void write() {
+    if (record_) record_->write();
+  }
+  int finish_with_exit_code(int code, const std::string& reason = "") {
+    return record_ ? record_->finish_with_exit_code(code, reason) : code;
+  }
+
+ private:
+  std::optional<RunRecord> record_;
+};
+
+// What a distributed run cannot do yet (exit 2 on every rank: every rank parses the same options).
+void check_distributed(const Scene& scene, const ParsedRun& p, bool restart) {
+  if (!scene.world().distributed()) return;
+  if (!scene.supports_distributed_runs())
+    exit_usage_error(scene.program(), "", "this example does not run distributed (mpirun) yet");
+  if (restart) p.parser.fail("--restart", "checkpoints of distributed runs are not implemented yet");
+  if (p.control.checkpoint_every > 0)
+    p.parser.fail("--checkpoint-every", "checkpoints of distributed runs are not implemented yet");
+}
+
 }  // namespace
 
-int run_scene_main(Scene& scene, int argc, char** argv) {
+int run_scene_main(Scene& scene, int argc, char** argv) { return run_scene_main(scene, argc, argv, Communicator{}); }
+
+int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& world) {
+  scene.set_world(world);
+  if (world.rank() > 0 && !std::freopen("/dev/null", "w", stdout)) return 1;  // rank 0 prints the reports
   const std::string program = scene.program();
   const std::optional<Checkpoint> restart = load_restart_option(argc, argv, program);
   ParsedRun p(scene);
   parse(p, scene, argc, argv, restart ? &*restart : nullptr);
+  check_distributed(scene, p, restart.has_value());
   start_run(p.core, program);
-  RunRecord record = start_run_record(p.parser, p.core.out);  // run.json: options, version, start
+  // run.json: options, version, start (distributed: rank 0's, written last)
+  RootRecord record(world.rank() == 0, [&] { return start_run_record(p.parser, p.core.out, world.size()); });
   // A stop during a set-up without a poll: no state to checkpoint, the record says so.
   SetupWatchdog watchdog([&](int sig) {
     std::fprintf(stderr, "%s: stopped by signal %d during the set-up (no state to checkpoint yet)\n", program.c_str(), sig);
@@ -171,7 +215,7 @@ int run_scene_main(Scene& scene, int argc, char** argv) {
       if (status != 0) break;  // a stop signal (checkpoint written) or a failure (last good state written)
       if (stop_requested()) break;  // a signal after the run ended: no further run
     }
-    write_paraview_states(scene, p.core.out, done);
+    if (!world.distributed()) write_paraview_states(scene, p.core.out, done);  // (they read serial frames)
     const int report = scene.report(p.core, p.runs, status == 0);
     if (const int sig = stop_requested(); sig != 0 && status == 0) {  // after a run ended: its outputs are whole
       std::fprintf(stderr, "%s: stopped by signal %d after %zu of %zu runs ended\n", program.c_str(), sig, done.size(),
@@ -191,6 +235,9 @@ int run_scene_main(Scene& scene, int argc, char** argv) {
     exit_usage_error(program, "", e.what());
   } catch (const std::exception& e) {
     watchdog.disarm();
+    // Distributed: an exception of one rank alone cannot be answered here (the others may wait in
+    // a collective): MpiSession::run aborts every rank. A CollectiveError is every rank's.
+    if (world.size() > 1 && !dynamic_cast<const CollectiveError*>(&e)) throw;
     std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
     return record.finish_with_exit_code(1, e.what());
   }

@@ -14,6 +14,7 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/progress.hpp"
+#include "sphark/io/pvtp_series.hpp"
 #include "sphark/run/run_outputs.hpp"
 #include "sphark/run/signals.hpp"
 
@@ -96,7 +97,15 @@ class TimeLoop {
   void bound_steps(OdeSystem& system);
   StepperStats stats() const { return base_.total(stepper_->stats()); }
   void save(Real time);
-  void write_frame(Real time) { res_.last_frame = vtk_->write(hooks_.frame(time, y_.data()), time); }
+  // Distributed runs (StepperOptions::communicator with MPI): every rank writes its piece of a
+  // frame (parallel VTK), rank 0 the CSV; the stop poll is collective; no checkpoints yet.
+  bool distributed() const { return opts_.communicator.distributed(); }
+  bool frames() const { return vtk_ || pvtk_; }
+  void write_frame(Real time);
+  void flush_csv() const {
+    if (opts_.communicator.rank() == 0) csv_.flush();
+  }
+  int stop_signal() const;
   void record(Real time);
   void stop(int signal);
   void fail();
@@ -113,6 +122,7 @@ class TimeLoop {
   const Real frame_every_;
   AtomicCsv csv_;
   std::optional<ResumableVtkSeries> vtk_;
+  std::optional<ParallelVtkSeriesWriter> pvtk_;  // distributed runs
   Real sample_ = 0, next_frame_ = 0, next_checkpoint_;
   CountBase base_;
   std::vector<std::pair<std::string, Real*>> binds_;  // the checkpoint's scalars
@@ -129,7 +139,8 @@ TimeLoop::TimeLoop(OdeSystem& system, const StateLayout& initial_layout, Stepper
       next_checkpoint_(s.checkpoint_every), y_(std::move(y0)), layout_(initial_layout) {
   res_.program = s.program;
   res_.run = s.run;
-  if (!s.frames_dir.empty()) vtk_.emplace(s.frames_dir, s.frames_basename);
+  if (!s.frames_dir.empty() && distributed()) pvtk_.emplace(opts_.communicator, s.frames_dir, s.frames_basename);
+  if (!s.frames_dir.empty() && !distributed()) vtk_.emplace(s.frames_dir, s.frames_basename);
   bind_checkpoint_scalars();
   if (y_.size() != layout_.size()) throw std::invalid_argument("run_time_loop: initial state does not fit the layout");
   if (s.restart) restore(*s.restart);
@@ -182,11 +193,23 @@ void TimeLoop::bound_steps(OdeSystem& system) {
     opts_.min_dt = s_.min_dt_fraction * scale;
   }
   if (opts_.step_floor <= 0) opts_.step_floor = s_.step_floor_fraction * t_end_;
-  if (!opts_.interrupt) opts_.interrupt = [] { return stop_requested() != 0; };
+  if (!opts_.interrupt) opts_.interrupt = [this] { return stop_signal() != 0; };
   if (s_.inject_nan_at > 0) opts_.inject_nan_from = s_.inject_nan_at;
 }
 
+void TimeLoop::write_frame(Real time) {
+  const ParticleFrame f = hooks_.frame(time, y_.data());
+  res_.last_frame = pvtk_ ? pvtk_->write(f, time) : vtk_->write(f, time);
+}
+
+// The signal a stop was requested by (0: none); distributed: of any rank, on every rank.
+int TimeLoop::stop_signal() const {
+  const int mine = stop_requested();
+  return distributed() ? static_cast<int>(opts_.communicator.allreduce(std::int64_t(mine), ReduceOp::Max)) : mine;
+}
+
 void TimeLoop::save(Real time) {
+  if (distributed()) return;  // checkpoints of distributed runs: not yet (the options refuse them)
   ScopedPhase phase(Phase::Output);
   Checkpoint c;
   c.program = s_.program;
@@ -215,7 +238,7 @@ void TimeLoop::save(Real time) {
   c.y = y_;
   c.stepper_data = stepper_->resume_data();
   c.system_data = system_.resume_data();
-  csv_.flush();
+  flush_csv();
   res_.checkpoint = s_.checkpoint;
   save_checkpoint(s_.checkpoint, c);
 }
@@ -224,9 +247,9 @@ void TimeLoop::save(Real time) {
 void TimeLoop::record(Real time) {
   ScopedPhase phase(Phase::Output);
   csv_.row(hooks_.diagnostics(time, y_.data(), stats()));
-  if (vtk_ && time >= next_frame_ - 1e-12 * t_end_) {
+  if (frames() && time >= next_frame_ - 1e-12 * t_end_) {
     write_frame(time);
-    csv_.flush();
+    flush_csv();
     next_frame_ += frame_every_;
   }
   sample_ += 1;
@@ -235,6 +258,7 @@ void TimeLoop::record(Real time) {
 void TimeLoop::stop(int signal) {
   res_.status = TimeLoopStatus::Stopped;
   res_.signal = signal;
+  if (distributed()) flush_csv();  // (save() flushes it otherwise)
   save(t_);
 }
 
@@ -245,18 +269,19 @@ void TimeLoop::fail() {
   {
     ScopedPhase phase(Phase::Output);
     csv_.row(hooks_.diagnostics(t_, y_.data(), stats()));
-    if (vtk_) write_frame(t_);
+    if (frames()) write_frame(t_);
   }
+  if (distributed()) flush_csv();  // (save() flushes it otherwise)
   save(t_);
 }
 
 void TimeLoop::end_at_root() {
   const std::filesystem::path before = res_.last_frame;
   record(t_);  // the event ends the run at its root time, with a frame of that state
-  if (vtk_ && res_.last_frame == before) {
+  if (frames() && res_.last_frame == before) {
     ScopedPhase phase(Phase::Output);
     write_frame(t_);
-    csv_.flush();
+    flush_csv();
   }
   res_.status = TimeLoopStatus::EndedEarly;
 }
@@ -281,14 +306,14 @@ TimeLoopResult TimeLoop::run() {
   if (!s_.restart) record(0.0);
   if (hooks_.finished && hooks_.finished(t_)) res_.status = TimeLoopStatus::EndedEarly;
   while (res_.status == TimeLoopStatus::Reached && t_ < t_end_ * (1 - 1e-12)) {
-    if (const int sig = stop_requested()) {  // SIGINT/SIGTERM: checkpoint the last recorded state
+    if (const int sig = stop_signal()) {  // SIGINT/SIGTERM: checkpoint the last recorded state
       stop(sig);
       break;
     }
     const Real t_out = std::min(t_end_, sample_ * s_.sample_every);
     const AdvanceStatus st = advance_to(*stepper_, hooks_, t_out, y_, t_, layout_, report_progress);
     if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
-      stop(stop_requested());
+      stop(stop_signal());
       break;
     }
     if (st == AdvanceStatus::Failed) {
@@ -316,7 +341,7 @@ void TimeLoop::finish() {
   if (res_.ok()) {
     {
       ScopedPhase phase(Phase::Output);
-      csv_.flush();
+      flush_csv();
     }
     if (s_.checkpoint_every > 0) save(t_);
   }
@@ -337,10 +362,11 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
   const auto start = std::chrono::steady_clock::now();
   install_stop_handlers();
 
+  const int rank = opts.communicator.rank();
   TimeLoop loop(system, initial_layout, std::move(opts), std::move(y0), s, hooks);
   TimeLoopResult res = loop.run();
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (profile.enabled()) {
+  if (profile.enabled() && rank == 0) {  // distributed: rank 0's profile
     std::cout << s.program << " " << s.run << ": ";
     profile.print(std::cout, res.wall_seconds);
     std::cout.flush();
@@ -348,12 +374,18 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
   return res;
 }
 
-int report_time_loop_end(const TimeLoopResult& r) {
+int report_time_loop_end(const TimeLoopResult& r, bool print) {
   const char* p = r.program.c_str();
+  if (!print) return r.ok() ? 0 : r.status == TimeLoopStatus::Stopped ? 128 + r.signal : 3;
   switch (r.status) {
     case TimeLoopStatus::Reached:
     case TimeLoopStatus::EndedEarly: return 0;
     case TimeLoopStatus::Stopped:
+      if (r.checkpoint.empty()) {  // a distributed run (no checkpoints yet)
+        std::fprintf(stderr, "%s: %s run stopped by signal %d at t=%.9g; no checkpoint\n", p, r.run.c_str(), r.signal,
+                     r.t_reached);
+        return 128 + r.signal;
+      }
       std::fprintf(stderr, "%s: %s run stopped by signal %d at t=%.9g; checkpoint %s (continue with --restart %s)\n", p,
                    r.run.c_str(), r.signal, r.t_reached, r.checkpoint.c_str(), r.checkpoint.c_str());
       return 128 + r.signal;

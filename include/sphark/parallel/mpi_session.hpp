@@ -28,6 +28,9 @@ class MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
 
   static bool built_with_mpi();
+  // True in a process started by an MPI launcher (mpirun / mpiexec: OMPI_COMM_WORLD_SIZE,
+  // PMI_SIZE or PMIX_RANK set): a program that also runs alone creates a session only then.
+  static bool launched_by_mpirun();
   const Communicator& world() const { return world_; }
 
   // body(world()) on every rank, with the error policy above; returns body's exit code, or

@@ -38,6 +38,7 @@
 #include "sphark/integrate/stepper_options.hpp"
 #include "sphark/io/paraview_state.hpp"
 #include "sphark/io/particle_frame.hpp"
+#include "sphark/parallel/communicator.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/time_loop.hpp"
 #include "sphark/state/state_layout.hpp"
@@ -138,9 +139,23 @@ class Scene {
   virtual std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& /*runs_done*/) const {
     return {};
   }
+
+  // Distributed runs (mpirun, docs/scaling.md): a scene that supports them builds its runs on
+  // world() (set by run_scene_main before the options are parsed; serial otherwise), with the
+  // stepper's communicator, particle ids in its frames and diagnostics reduced over the ranks.
+  virtual bool supports_distributed_runs() const { return false; }
+  const Communicator& world() const { return world_; }
+  void set_world(Communicator world) { world_ = std::move(world); }
+
+ private:
+  Communicator world_;
 };
 
 // Parses the options, runs the scene and returns the exit code (see the top of this file).
 int run_scene_main(Scene& scene, int argc, char** argv);
+// The same on the ranks of `world` (every rank calls it; MpiSession::run around it): rank 0
+// prints and writes run.json and the CSVs, every rank its frames' pieces. A scene without
+// supports_distributed_runs(), --checkpoint-every and --restart are refused on > 1 rank (exit 2).
+int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& world);
 
 }  // namespace sphark

@@ -129,7 +129,7 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& layout, Stepp
 // Prints the outcome of a failed or stopped run to stderr (reason, time, particles, where the
 // last good state is, how to continue) and returns the exit code: 0 (ok), 3 (failed),
 // 128 + signal (stopped).
-int report_time_loop_end(const TimeLoopResult& r);
+int report_time_loop_end(const TimeLoopResult& r, bool print = true);  // print false: the code alone
 
 // One column of a CSV text as numbers (std::runtime_error if the column is missing).
 std::vector<Real> csv_column(const std::string& csv_text, const std::string& column);

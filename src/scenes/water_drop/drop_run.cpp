@@ -27,15 +27,25 @@ std::string scene_text(const WaterDropConfig& c) {
   return s;
 }
 
-DropRun::DropRun(const WaterDropConfig& config, Real diagnostics_every, Real frame_every)
-    : drop_(make_water_drop(config)), diagnostics_every_(diagnostics_every), frame_every_(frame_every) {
-  sum_.particles = drop_.particles();
+DropRun::DropRun(const WaterDropConfig& config, Real diagnostics_every, Real frame_every, Communicator world)
+    : world_(std::move(world)), diagnostics_every_(diagnostics_every), frame_every_(frame_every) {
+  if (world_.distributed()) {
+    dist_ = std::make_unique<DistributedDrop>(config, world_);
+    drop_ = &dist_->drop();
+    sum_.particles = dist_->global_particles();
+  } else {
+    serial_.emplace(make_water_drop(config));
+    drop_ = &*serial_;
+    sum_.particles = drop_->particles();
+  }
   prev_exact_a_ = config.radius;
 }
 
 StepperOptions DropRun::stepper(const CoreOptions& core, std::string_view program) {
   StepperOptions o = stepper_options(core, system(), program);
-  o.atol = water_drop_absolute_tolerances(drop_, core.atol);  // one scale per field
+  o.atol = water_drop_absolute_tolerances(*drop_, core.atol);  // one scale per field
+  o.communicator = world_;
+  atol_ = core.atol;
   return o;
 }
 
@@ -46,9 +56,11 @@ std::vector<std::string> DropRun::columns() const {
 }
 
 std::vector<Real> DropRun::diagnostics(Real time, const Real* y, const StepperStats& st) {
-  const WcsphDiagnostics<2> d = drop_.model->diagnostics(time, y);
-  const SemiAxes ax = measure_semi_axes(y + layout().offset(Field::Position), drop_.particles());
-  const EllipticDropState ex = drop_.exact.at(time);
+  const std::size_t n = drop_->particles();
+  const WcsphDiagnostics<2> d =
+      dist_ ? reduce_diagnostics(world_, drop_->model->diagnostics(time, y), n) : drop_->model->diagnostics(time, y);
+  const SemiAxes ax = measure_semi_axes(world_, y + layout().offset(Field::Position), n);
+  const EllipticDropState ex = drop_->exact.at(time);
   const Real err_x = std::abs(ax.x - ex.a) / ex.a, err_y = std::abs(ax.y - ex.b) / ex.b;
   const Real err = std::max(err_x, err_y);
   if (err > sum_.max_semi_axis_error) {
@@ -89,11 +101,25 @@ void DropRun::settings(TimeLoopSettings& s) {
   s.frame_every = frame_every_;
 }
 
+ParticleFrame DropRun::frame(Real t, const Real* y) {
+  ParticleFrame f = drop_->model->frame(t, y);
+  if (dist_) f.ids = dist_->ids().data();  // parallel VTK: each particle's global id
+  return f;
+}
+
+// This rank's particles to their owners; the loop continues from the new state (Stepper::resize).
+std::optional<TimeLoopHooks::Resize> DropRun::after_step(Real, const Real* y) {
+  if (!dist_ || ++steps_ % kMigrateEvery != 0) return std::nullopt;
+  std::vector<Real> state(y, y + layout().size());
+  dist_->migrate(state, nullptr, steps_ % kRepartitionEvery == 0);
+  return TimeLoopHooks::Resize{layout(), std::move(state), water_drop_absolute_tolerances(*drop_, atol_)};
+}
+
 DropRunSummary DropRun::summary(const TimeLoopResult& result) const {
   DropRunSummary s = sum_;
   s.loop = result;
   s.mean_abs_div_v_time_avg = result.t_reached > 0 ? div_integral_ / result.t_reached : 0;
-  s.neighbour_builds = drop_.model->neighbour_builds();
+  s.neighbour_builds = drop_->model->neighbour_builds();
   return s;
 }
 

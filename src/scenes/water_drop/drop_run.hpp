@@ -1,11 +1,14 @@
 #pragma once
 // One water-drop run (cleaned or control) for the run driver: its system, diagnostics row, VTK
 // frame, and the accuracy summary against the exact ellipse accumulated sample by sample.
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "sphark/run/scene.hpp"
+#include "sphark/scenes/water_drop/distributed_drop.hpp"
 #include "sphark/scenes/water_drop/water_drop.hpp"
 
 namespace sphark {
@@ -25,25 +28,36 @@ struct DropRunSummary {
 
 class DropRun final : public SceneRun {
  public:
-  // diagnostics_every: the sampling interval (frames follow --output-every).
-  DropRun(const WaterDropConfig& config, Real diagnostics_every, Real frame_every);
+  // diagnostics_every: the sampling interval (frames follow --output-every). A world with MPI:
+  // a distributed run (DistributedDrop; migration every kMigrateEvery steps).
+  DropRun(const WaterDropConfig& config, Real diagnostics_every, Real frame_every, Communicator world = {});
 
-  OdeSystem& system() override { return drop_.model->system(); }
-  const StateLayout& layout() const override { return drop_.model->layout(); }
-  std::vector<Real> initial_state() override { return drop_.y0; }
+  OdeSystem& system() override { return drop_->model->system(); }
+  const StateLayout& layout() const override { return drop_->model->layout(); }
+  std::vector<Real> initial_state() override { return dist_ ? dist_->state() : drop_->y0; }
   StepperOptions stepper(const CoreOptions& core, std::string_view program) override;
   std::vector<std::string> columns() const override;
   std::vector<Real> diagnostics(Real t, const Real* y, const StepperStats& total) override;
-  ParticleFrame frame(Real t, const Real* y) override { return drop_.model->frame(t, y); }
+  ParticleFrame frame(Real t, const Real* y) override;
   std::vector<std::pair<std::string, Real*>> saved_numbers() override;
   void settings(TimeLoopSettings& s) override;
+  // Distributed: every kMigrateEvery steps the particles move to their RCB owners (the domains
+  // recomputed every kRepartitionEvery steps).
+  bool changes_particles() const override { return dist_ != nullptr; }
+  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y) override;
+  static constexpr long kMigrateEvery = 50, kRepartitionEvery = 200;
 
   // The summary of the run (complete after the loop ended: pass its result).
   DropRunSummary summary(const TimeLoopResult& result) const;
 
  private:
-  WaterDrop drop_;
+  Communicator world_;
+  std::unique_ptr<DistributedDrop> dist_;  // distributed runs
+  std::optional<WaterDrop> serial_;        // serial runs
+  WaterDrop* drop_;                        // the one of the two in use
   Real diagnostics_every_, frame_every_;
+  Real atol_ = 0;    // of the stepper: the per-entry tolerances after a migration
+  long steps_ = 0;   // distributed: steps since the start (the migration schedule)
   DropRunSummary sum_;
   // the numbers of the accuracy summary accumulated sample by sample (saved in checkpoints)
   Real samples_ = 0, e0_ = 0, div_integral_ = 0, t_prev_ = 0, div_prev_ = 0, prev_exact_a_ = 0, prev_err_x_ = 0,

@@ -96,7 +96,7 @@ WaterDropConfig WaterDropScene::config_of(const std::string& run) const {
 std::string WaterDropScene::scene_text(const std::string& run) const { return sphark::scene_text(config_of(run)); }
 
 std::unique_ptr<SceneRun> WaterDropScene::make_run(const std::string& run, const CoreOptions& core) {
-  return std::make_unique<DropRun>(config_of(run), diagnostics_every_, core.output_every);
+  return std::make_unique<DropRun>(config_of(run), diagnostics_every_, core.output_every, world());
 }
 
 // The square lattice inside the disc: pi R^2 / dx^2 points (1976 for R = 1, dx = 0.04).
@@ -128,7 +128,7 @@ void print_summary(const std::string& label, const DropRunSummary& s) {
 }  // namespace
 
 int WaterDropScene::report(const CoreOptions& core, const std::vector<std::string>&, bool all_ok) {
-  if (results_.empty()) return 0;
+  if (results_.empty() || world().rank() != 0) return 0;  // distributed: rank 0 reports
   if (!all_ok) {  // the failed or stopped run's summary only
     if (!results_.back().second.loop.ok()) print_summary(results_.back().first, results_.back().second);
     return 0;
@@ -137,9 +137,14 @@ int WaterDropScene::report(const CoreOptions& core, const std::vector<std::strin
               core.dt, core.t_end);
   for (const auto& [label, s] : results_) print_summary(label, s);
   write_drop_summary(core.out, results_);
-  if (core.render) make_drop_pictures(core.out, results_, core.output_every > 0 ? core.output_every : core.t_end, core.t_end);
+  if (core.render && !world().distributed()) make_drop_pictures(core.out, results_, core.output_every > 0 ? core.output_every : core.t_end, core.t_end);
   std::string runs;
   for (const auto& [label, s] : results_) runs += (runs.empty() ? "" : ",") + label;
+  if (world().distributed()) {  // parallel VTK, no pictures or ParaView state
+    std::printf("\noutputs in %s/{%s}: diagnostics.csv, drop.pvd (+ drop_*.pvtp, one .vtp per rank); summary.csv\n",
+                core.out.c_str(), runs.c_str());
+    return 0;
+  }
   std::printf("\noutputs in %s/{%s}: diagnostics.csv, drop.pvd (+ drop_*.vtp); summary.csv, *.png\n"
               "open in ParaView: cd %s && paraview --state=view.pvsm  (or paraview %s/%s/drop.pvd; colour by density,"
               " pressure, div_v, psi)\n",

@@ -10,18 +10,23 @@
 
 namespace sphark {
 
-SemiAxes measure_semi_axes(const Real* positions, std::size_t n) {
+SemiAxes measure_semi_axes(const Real* positions, std::size_t n) { return measure_semi_axes(Communicator{}, positions, n); }
+
+SemiAxes measure_semi_axes(const Communicator& comm, const Real* positions, std::size_t n) {
   Vec<2> c = Vec<2>::Zero();
   for (std::size_t a = 0; a < n; ++a) c += Eigen::Map<const Vec<2>>(positions + 2 * a);
-  c /= static_cast<Real>(n);
-  Real sx = 0, sy = 0;
+  Real sums[3] = {c.x(), c.y(), static_cast<Real>(n)};
+  comm.allreduce(sums, 3, ReduceOp::Sum);  // serially: unchanged
+  c = Vec<2>(sums[0], sums[1]) / sums[2];
+  Real s[2] = {0, 0};
   for (std::size_t a = 0; a < n; ++a) {
     const Vec<2> d = Eigen::Map<const Vec<2>>(positions + 2 * a) - c;
-    sx += d.x() * d.x();
-    sy += d.y() * d.y();
+    s[0] += d.x() * d.x();
+    s[1] += d.y() * d.y();
   }
+  comm.allreduce(s, 2, ReduceOp::Sum);
   // a uniform ellipse has <x^2> = a^2 / 4
-  return {2 * std::sqrt(sx / static_cast<Real>(n)), 2 * std::sqrt(sy / static_cast<Real>(n))};
+  return {2 * std::sqrt(s[0] / sums[2]), 2 * std::sqrt(s[1] / sums[2])};
 }
 
 namespace {
@@ -34,6 +39,8 @@ class WcsphModelOf final : public WcsphModel {
   WcsphDiagnostics<2> diagnostics(Real t, const Real* y) override { return wcsph_diagnostics(sys_, t, y); }
   ParticleFrame frame(Real t, const Real* y) override { return frame_.build(sys_, t, y); }
   long neighbour_builds() const override { return sys_.neighbour_builds(); }
+  void distribute(Communicator comm, std::vector<std::int64_t> ids) override { sys_.distribute(std::move(comm), std::move(ids)); }
+  void set_particles(std::vector<std::int64_t> ids) override { sys_.set_particles(std::move(ids)); }
 
  private:
   WcsphSystem<2, Kernel> sys_;

@@ -10,6 +10,7 @@
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/tait_eos.hpp"
 #include "sphark/simd/dispatch.hpp"
+#include "wcsph_halo.hpp"
 #include "wcsph_pair_rows.hpp"
 
 namespace sphark {
@@ -35,22 +36,38 @@ WcsphSystem<D, Kernel>::WcsphSystem(std::size_t particles, WcsphParams<D> params
 }
 
 template <int D, class Kernel>
-void WcsphSystem<D, Kernel>::update_neighbours(const Real* x) {
+WcsphSystem<D, Kernel>::~WcsphSystem() = default;
+
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::resize_particles(std::size_t n) {
+  layout_ = wcsph_layout<D>(n, p_.cleaning);
+  pressure_.assign(n, 0);
+  div_v_.assign(n, 0);
+  grad_rho_.assign(n, Vec<D>::Zero());
+  built_ = false;
+  evaluated_y_.clear();
+}
+
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::update_neighbours(const Real* x, std::size_t count, const std::uint32_t* keys,
+                                               bool force) {
   const Real support = Kernel::support * p_.h;
   const Real skin = p_.skin_fraction * support;
   const std::size_t n = layout_.particles();
   ScopedPhase timer(Phase::Neighbours);
-  if (built_) {  // the lists hold slots: the displacement check sees the positions in slot order
-    x_slots_.resize(D * n);
+  if (built_ && !force) {  // the lists hold slots: the displacement check sees the positions in slot order
+    x_slots_.resize(D * count);
 #pragma omp parallel for schedule(static)
-    for (std::size_t s = 0; s < n; ++s)
+    for (std::size_t s = 0; s < count; ++s)
       for (int k = 0; k < D; ++k) x_slots_[D * s + k] = x[D * slot_particle_[s] + k];
     if (search_.max_displacement_since_build(x_slots_.data()) < 0.5 * skin) return;
   }
-  // Lists of the particles (rows ascending in particle number), then slots in cell order: slot
-  // s is particle slot_particle_[s], and the rows keep their order (sums do not depend on slots).
-  search_.build(x, n, support + skin);
+  // Lists of the particles (rows ascending in particle number, or key), then slots in cell
+  // order: slot s is particle slot_particle_[s], and the rows keep their order (sums do not
+  // depend on slots). The local particles (0 .. n) take the first slots: rows are theirs only.
+  search_.build(x, count, support + skin, keys);
   slot_particle_ = search_.cell_order();
+  if (count > n) std::stable_partition(slot_particle_.begin(), slot_particle_.end(), [n](std::uint32_t p) { return p < n; });
   search_.renumber(slot_particle_);
   built_ = true;
   ++builds_;
@@ -85,92 +102,99 @@ Rows<D, K> rows_in_use() {
 }  // namespace
 
 template <int D, class Kernel>
-void WcsphSystem<D, Kernel>::fill_records(const Real* y, bool viscosity) {
+void WcsphSystem<D, Kernel>::fill_records(const wcsph_detail::ParticleFields<D>& f, std::size_t count) {
   using wcsph_detail::Record;
-  const auto x = vector_field<D>(y, layout_, Field::Position);
-  const auto v = vector_field<D>(y, layout_, Field::Velocity);
-  const auto rho = scalar_field(y, layout_, Field::Density);
-  const bool clean = p_.cleaning;
-  const Real* psi = clean ? y + layout_.offset(Field::Psi) : nullptr;
-  const std::size_t n = layout_.particles();
+  const bool clean = p_.cleaning, viscosity = this->viscosity();
   const Real m = p_.mass;
-  records_.resize(Record<D>::size * n);
+  records_.resize(Record<D>::size * count);
+  pressure_.resize(std::max(pressure_.size(), count));
   const std::uint32_t* particle = slot_particle_.data();
 #pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
+  for (std::size_t a = 0; a < count; ++a) {  // slot a: particle p
     const std::size_t p = particle[a];
-    pressure_[p] = tait_pressure(rho[p], p_.rho0, p_.sound_speed);
+    const Real rho = f.rho[p];
+    pressure_[p] = tait_pressure(rho, p_.rho0, p_.sound_speed);
     Real* r = records_.data() + Record<D>::size * a;
     for (int k = 0; k < D; ++k) {
-      r[Record<D>::x + k] = x(k, p);
-      r[Record<D>::v + k] = v(k, p);
+      r[Record<D>::x + k] = f.x[D * p + k];
+      r[Record<D>::v + k] = f.v[D * p + k];
       r[Record<D>::grad_rho + k] = 0;
     }
-    r[Record<D>::rho] = rho[p];
-    r[Record<D>::volume] = m / rho[p];
-    r[Record<D>::p_over_rho2] = pressure_[p] / (rho[p] * rho[p]);
-    r[Record<D>::q_psi] = clean ? psi[p] / (rho[p] * rho[p]) : 0;  // Omega = 1 for constant h
-    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho[p], p_.rho0, p_.sound_speed) : 0;
+    r[Record<D>::rho] = rho;
+    r[Record<D>::volume] = m / rho;
+    r[Record<D>::p_over_rho2] = pressure_[p] / (rho * rho);
+    r[Record<D>::q_psi] = clean ? f.psi[p] / (rho * rho) : 0;  // Omega = 1 for constant h
+    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho, p_.rho0, p_.sound_speed) : 0;
     for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
   }
 }
 
-// The state is finite with rho > 0 (the stepper's guard checks it before every call).
 template <int D, class Kernel>
-int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
-  ScopedPhase rhs_timer(Phase::Rhs);
-  ++rhs_calls_;
-  evaluated_y_.clear();  // set again once every derived array is y's
+wcsph_detail::RowInput<D> WcsphSystem<D, Kernel>::row_input() const {
+  const Real h = p_.h;
+  const bool subsystem = p_.cleaning_subsystem_only;
+  Real grad_scale = 1 / (h * h);
+  for (int k = 0; k < D; ++k) grad_scale /= h;
+  const NeighbourList& nl = search_.list();
+  return {records_.data(), nl.indices.data(), nl.offsets.data(), MinimumImage<D>(search_.box()),
+          p_.mass, h, 1 / h, grad_scale, Kernel::support * h * Kernel::support * h, p_.alpha,
+          p_.cleaning, subsystem, viscosity(), p_.delta * h * p_.sound_speed > 0 && !subsystem, corrected_diffusion()};
+}
+
+template <int D, class Kernel>
+std::uint32_t* WcsphSystem<D, Kernel>::inside_start(std::size_t a) {
+  return inside_.data() + search_.list().begin(a) + kInsidePad * a;
+}
+
+template <int D, class Kernel>
+wcsph_detail::InsideRow WcsphSystem<D, Kernel>::inside_row(std::size_t a) const {
+  return {inside_.data() + search_.list().begin(a) + kInsidePad * a, inside_count_[a]};
+}
+
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::prepare_rows(const wcsph_detail::ParticleFields<D>& f, std::size_t count) {
+  using wcsph_detail::Record;
+  fill_records(f, count);  // before `in`: it holds records_.data()
+  const RowInput<D> in = row_input();
+  const Rows<D, Kernel> rows = rows_in_use<D, Kernel>();
+  const std::size_t n = layout_.particles();
+  // The pairs inside the support: inside_count_[a] of them from inside_start(a) on, a row's
+  // room its list length plus the padding a block may write past it.
+  inside_.resize(search_.list().pairs() + kInsidePad * n);
+  inside_count_.resize(n);
+  ScopedPhase forces_timer(Phase::Forces);
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < n; ++a) inside_count_[a] = rows.inside(in, a, inside_start(a));
+  if (!corrected_diffusion()) return;
+  ScopedPhase timer(Phase::DensityH);
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < n; ++a) {
+    grad_rho_[a] = rows.gradient(in, a, inside_row(a));
+    Eigen::Map<Vec<D>>(records_.data() + Record<D>::size * a + Record<D>::grad_rho) = grad_rho_[a];
+  }
+}
+
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::forces(const Real* y, Real* ydot) {
   const auto x = vector_field<D>(y, layout_, Field::Position);
   const auto v = vector_field<D>(y, layout_, Field::Velocity);
   const auto rho = scalar_field(y, layout_, Field::Density);
   auto dx = vector_field<D>(ydot, layout_, Field::Position);
   auto dv = vector_field<D>(ydot, layout_, Field::Velocity);
   auto drho = scalar_field(ydot, layout_, Field::Density);
-  const bool clean = p_.cleaning;
+  const bool clean = p_.cleaning, subsystem = p_.cleaning_subsystem_only;
   const Real* psi = clean ? y + layout_.offset(Field::Psi) : nullptr;
   Real* dpsi = clean ? ydot + layout_.offset(Field::Psi) : nullptr;
-  const bool subsystem = p_.cleaning_subsystem_only;
-
-  update_neighbours(x.data());
   const std::size_t n = layout_.particles();
-  const Real m = p_.mass, h = p_.h, c_h = p_.cleaning_speed();
-  const Real dh_c = p_.delta * h * p_.sound_speed;
-  const bool viscosity = p_.alpha > 0 && !subsystem;
-  fill_records(y, viscosity);  // before `in`: it holds records_.data()
-  using wcsph_detail::Record;
-  const bool corrected_diffusion = dh_c > 0 && p_.diffusion_correction && !subsystem;
-  const NeighbourList& nl = search_.list();
-  Real grad_scale = 1 / (h * h);
-  for (int k = 0; k < D; ++k) grad_scale /= h;
-  const RowInput<D> in{records_.data(), nl.indices.data(), nl.offsets.data(), MinimumImage<D>(search_.box()),
-                       m, h, 1 / h, grad_scale, Kernel::support * h * Kernel::support * h, p_.alpha,
-                       clean, subsystem, viscosity, dh_c > 0 && !subsystem, corrected_diffusion};
-  const std::uint32_t* particle = slot_particle_.data();
-
+  const Real c_h = p_.cleaning_speed(), dh_c = p_.delta * p_.h * p_.sound_speed;
+  const RowInput<D> in = row_input();
   const Rows<D, Kernel> rows = rows_in_use<D, Kernel>();
-  // The pairs inside the support: inside_count_[a] of them from inside_[start(a)] on, a row's
-  // room its list length plus the padding a block may write past it.
-  constexpr std::size_t pad = 8;
-  inside_.resize(nl.pairs() + pad * n);
-  inside_count_.resize(n);
-  auto start = [&](std::size_t a) { return inside_.data() + nl.begin(a) + pad * a; };
-  auto row = [&](std::size_t a) { return wcsph_detail::InsideRow{start(a), inside_count_[a]}; };
+  const std::uint32_t* particle = slot_particle_.data();
   ScopedPhase forces_timer(Phase::Forces);
-#pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) inside_count_[a] = rows.inside(in, a, start(a));
-  if (corrected_diffusion) {
-    ScopedPhase timer(Phase::DensityH);
-#pragma omp parallel for schedule(static)
-    for (std::size_t a = 0; a < n; ++a) {
-      grad_rho_[a] = rows.gradient(in, a, row(a));
-      Eigen::Map<Vec<D>>(records_.data() + Record<D>::size * a + Record<D>::grad_rho) = grad_rho_[a];
-    }
-  }
   Real max_acc2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : max_acc2)
   for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
-    const ForceRow<D> sums = rows.forces(in, a, row(a));
+    const ForceRow<D> sums = rows.forces(in, a, inside_row(a));
     const std::size_t p = particle[a];
     Vec<D> acc = sums.acc;
     div_v_[p] = -sums.continuity / rho[p];  // eq. (36)
@@ -182,6 +206,20 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
     max_acc2 = std::max(max_acc2, acc.squaredNorm());
   }
   max_accel_ = std::sqrt(max_acc2);
+}
+
+// The state is finite with rho > 0 (the stepper's guard checks it before every call).
+template <int D, class Kernel>
+int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
+  ScopedPhase rhs_timer(Phase::Rhs);
+  ++rhs_calls_;
+  evaluated_y_.clear();  // set again once every derived array is y's
+  if (halo_) return distributed_rhs(y, ydot);
+  const wcsph_detail::ParticleFields<D> f = wcsph_detail::state_fields<D>(y, layout_);
+  const std::size_t n = layout_.particles();
+  update_neighbours(f.x, n, nullptr, false);
+  prepare_rows(f, n);
+  forces(y, ydot);
   evaluated_y_.assign(y, y + layout_.size());
   return 0;
 }
@@ -197,7 +235,9 @@ int WcsphSystem<D, Kernel>::stiff_diagonal(Real /*t*/, const Real* /*y*/, Real* 
 
 template <int D, class Kernel>
 void WcsphSystem<D, Kernel>::evaluate(Real t, const Real* y) {
-  if (evaluated_y_.size() == layout_.size() && std::equal(y, y + layout_.size(), evaluated_y_.begin())) return;
+  bool fresh = evaluated_y_.size() == layout_.size() && std::equal(y, y + layout_.size(), evaluated_y_.begin());
+  if (halo_) fresh = halo_->on_every_rank(fresh);  // the RHS is collective: every rank or none
+  if (fresh) return;
   scratch_.resize(layout_.size());
   if (rhs(t, y, scratch_.data()) != 0) throw std::runtime_error("WcsphSystem: " + error_);
 }
@@ -220,8 +260,6 @@ Real WcsphSystem<D, Kernel>::max_stable_dt(Real t, const Real* y, const Real* yd
     vmax = std::max(vmax, v.col(a).norm());
     cmax = std::max(cmax, tait_sound_speed(rho[a], p_.rho0, p_.sound_speed));
   }
-  // Courant condition with the viscous signal speed (Monaghan 1992), and the force condition.
-  Real dt = p_.cfl * p_.h / (cmax + vmax + 1.2 * p_.alpha * cmax);
   Real accel = 0;
   if (ydot) {
     accel = max_acceleration(ydot);
@@ -229,6 +267,17 @@ Real WcsphSystem<D, Kernel>::max_stable_dt(Real t, const Real* y, const Real* yd
     evaluate(t, y);
     accel = max_accel_;
   }
+  // Distributed: the maxima over every particle, so that dt is the serial run's bit for bit (a
+  // minimum of the ranks' dt would not be: cmax and vmax may be on different ranks).
+  Real maxima[3] = {vmax, cmax, accel};
+  if (halo_) halo_->max_over_ranks(maxima, 3);
+  return stable_dt(maxima[0], maxima[1], maxima[2]);
+}
+
+// Courant condition with the viscous signal speed (Monaghan 1992), and the force condition.
+template <int D, class Kernel>
+Real WcsphSystem<D, Kernel>::stable_dt(Real vmax, Real cmax, Real accel) const {
+  Real dt = p_.cfl * p_.h / (cmax + vmax + 1.2 * p_.alpha * cmax);
   if (accel > 0) dt = std::min(dt, p_.cfl * std::sqrt(p_.h / accel));
   return dt;
 }

@@ -22,6 +22,7 @@ class WaterDropScene final : public Scene {
   ~WaterDropScene() override;
   std::string program() const override { return "water_drop"; }
   std::string description() const override;
+  bool supports_distributed_runs() const override { return true; }  // mpirun: DistributedDrop
   void set_defaults(CoreOptions& core) override;
   void add_options(OptionParser& p) override;
   void check_options(const OptionParser& p, CoreOptions& core, const RunControlOptions& control,

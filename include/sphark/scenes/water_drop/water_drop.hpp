@@ -11,6 +11,7 @@
 #include "sphark/core/types.hpp"
 #include "sphark/diagnostics/wcsph_diagnostics.hpp"
 #include "sphark/integrate/ode_system.hpp"
+#include "sphark/parallel/communicator.hpp"
 #include "sphark/schemes/wcsph/wcsph_params.hpp"
 #include "sphark/schemes/wcsph/wcsph_system.hpp"
 #include "sphark/state/state_layout.hpp"
@@ -42,6 +43,8 @@ struct SemiAxes {
   Real x, y;
 };
 SemiAxes measure_semi_axes(const Real* positions, std::size_t n);
+// Collective: of the particles of every rank (n on this one).
+SemiAxes measure_semi_axes(const Communicator& comm, const Real* positions, std::size_t n);
 
 // Common interface of the WCSPH system whatever its kernel (chosen at run time by name).
 class WcsphModel {
@@ -53,6 +56,9 @@ class WcsphModel {
   // The VTK frame of (t, y) (diagnostics/wcsph_diagnostics.hpp); valid until the next call.
   virtual ParticleFrame frame(Real t, const Real* y) = 0;
   virtual long neighbour_builds() const = 0;
+  // Distributed runs (WcsphSystem::distribute, set_particles): this rank's particles by global id.
+  virtual void distribute(Communicator comm, std::vector<std::int64_t> ids) = 0;
+  virtual void set_particles(std::vector<std::int64_t> ids) = 0;
 };
 
 struct WaterDrop {

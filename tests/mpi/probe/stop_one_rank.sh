@@ -1,0 +1,22 @@
+#!/bin/sh
+# stop_one_rank.sh <mpiexec> <np> <water_drop> <out>: SIGINT to one rank of a distributed
+# water_drop run only. The stop poll is collective (time loop, before every RHS): every rank
+# must stop at the same step, the run exit with 130, say "stopped by signal 2" and record
+# "stopped" in run.json.
+MPIEXEC=$1 NP=$2 DROP=$3 OUT=$4
+rm -rf "$OUT" "$OUT.log"
+"$MPIEXEC" --oversubscribe --allow-run-as-root -np "$NP" "$DROP" --no-render --threads 1 --scheme delta-sph \
+  --cleaning on --out "$OUT" > "$OUT.log" 2>&1 &
+RUN=$!
+i=0
+until [ -f "$OUT/cleaned/diagnostics.csv" ] || [ $i -ge 600 ]; do sleep 0.1; i=$((i + 1)); done  # the loop runs
+RANK=$(pgrep -P "$RUN" | tail -n 1)
+[ -n "$RANK" ] || { echo "no rank process of $RUN"; cat "$OUT.log"; exit 1; }
+kill -INT "$RANK"
+wait "$RUN"
+rc=$?
+cat "$OUT.log"
+[ "$rc" -eq 130 ] || { echo "exit code $rc, expected 130"; exit 1; }
+grep -q "cleaned run stopped by signal 2 at t=" "$OUT.log" || { echo "no stop message"; exit 1; }
+grep -q '"outcome": "stopped"' "$OUT/run.json" || { echo "run.json: not stopped"; exit 1; }
+echo "every rank stopped (exit 130)"
