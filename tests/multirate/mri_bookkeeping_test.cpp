@@ -56,7 +56,7 @@ ExpectedCounts expected_counts(const std::string& table, const std::string& fast
 }
 
 TEST(MriBookkeeping, EachLevelEvaluatesExactlyItsSet) {
-  for (const std::string table : mri_table_names()) {
+  for (const std::string& table : mri_table_names()) {
     OscillatorEnsemble sys = ensemble();
     sys.record_calls = true;
     const std::vector<Real> y0 = initial_state(sys.n());

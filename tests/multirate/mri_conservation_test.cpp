@@ -33,7 +33,7 @@ TEST(MriConservation, GlobalErkKeepsMomentumToRoundOff) {
 }
 
 TEST(MriConservation, MomentumDriftFallsAtTheTablesOrder) {
-  for (const std::string table : mri_table_names()) {
+  for (const std::string& table : mri_table_names()) {
     std::vector<Real> d;
     for (int k = 0; k < 4; ++k) {
       StepperOptions o;
