@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <regex>
 
 #include "../support/temp_dir.hpp"
 #include "run_example.hpp"
@@ -40,16 +39,6 @@ void expect_same_continuation(const Checkpoint& whole, const Checkpoint& restart
   EXPECT_EQ(whole.text("diagnostics.csv"), restarted.text("diagnostics.csv"));  // every row, every digit
 }
 }  // namespace
-
-// The files a .pvd lists, relative to its own folder.
-std::vector<std::string> pvd_files(const std::filesystem::path& pvd) {
-  const std::string xml = slurp(pvd);
-  const std::regex file_re("file=\"([^\"]+)\"");
-  std::vector<std::string> files;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), file_re); it != std::sregex_iterator(); ++it)
-    files.push_back((*it)[1].str());
-  return files;
-}
 
 TEST(GravityRuns, RestartOfTheCollapseIsBitForBit) {
   TempDir dir;

@@ -68,11 +68,8 @@ int expect_complete_files(const fs::path& dir) {
       EXPECT_NO_THROW(read_vtp(e.path()));
       ++frames;
     } else if (e.path().extension() == ".pvd") {
-      const std::string xml = slurp(e.path());
-      EXPECT_NE(xml.find("</VTKFile>"), std::string::npos);
-      const std::regex file_re("file=\"([^\"]+)\"");
-      for (auto it = std::sregex_iterator(xml.begin(), xml.end(), file_re); it != std::sregex_iterator(); ++it)
-        EXPECT_TRUE(fs::exists(dir / (*it)[1].str())) << (*it)[1].str();
+      EXPECT_NE(slurp(e.path()).find("</VTKFile>"), std::string::npos);
+      for (const std::string& f : pvd_files(e.path())) EXPECT_TRUE(fs::exists(dir / f)) << f;
     } else if (e.path().extension() == ".csv") {
       const std::string text = slurp(e.path());
       EXPECT_FALSE(text.empty());

@@ -14,6 +14,7 @@
 #include <thread>
 #include <utility>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -71,6 +72,16 @@ inline std::string slurp(const std::filesystem::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// The files a .pvd lists, relative to its own folder, in its order.
+inline std::vector<std::string> pvd_files(const std::filesystem::path& pvd) {
+  const std::string xml = slurp(pvd);
+  const std::regex file_re("file=\"([^\"]+)\"");
+  std::vector<std::string> files;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), file_re); it != std::sregex_iterator(); ++it)
+    files.push_back((*it)[1].str());
+  return files;
 }
 
 struct Finished {
