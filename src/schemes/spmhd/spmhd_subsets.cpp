@@ -68,7 +68,11 @@ int SpmhdScheme<D, K>::particle_stable_dt(Real t, const Real* y, const Real* ydo
     }
     dt[perm_[a]] = std::min(own[perm_[a]], kNeighbourStepFactor * least);
   }
-  std::fill(dt + n_, dt + num_particles(), std::numeric_limits<Real>::infinity());  // sinks
+  // A sink pulls on every gas particle, hardest on the closest ones, which orbit it on the
+  // shortest steps: it takes the shortest gas step (as in the global leapfrog, whose one step
+  // is that minimum), so its pair forces with the gas are sampled as often as theirs.
+  const Real shortest = n_ > 0 ? *std::min_element(dt, dt + n_) : std::numeric_limits<Real>::infinity();
+  std::fill(dt + n_, dt + num_particles(), shortest);  // sinks
   return 0;
 }
 

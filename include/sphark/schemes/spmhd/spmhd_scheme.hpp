@@ -74,7 +74,7 @@ class SpmhdScheme final : public OdeSystem {
   // positions), the gravity tree and the sink forces are computed for all and kept for the
   // active particles. particle_stable_dt: min(Courant, force criterion) of each gas particle
   // (stable_steps), capped at 4 x that of any neighbour within the kernel support (Saitoh &
-  // Makino 2009), +inf for sinks.
+  // Makino 2009); a sink's is the shortest gas step.
   bool supports_subsets() const override { return opt_.evolve_particles; }
   int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override;
   int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override;
