@@ -1,5 +1,7 @@
 #include "sphark/run/checkpoint.hpp"
 
+#include <algorithm>
+
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -89,6 +91,14 @@ const std::string& Checkpoint::text(const std::string& name) const {
   for (const auto& [k, v] : texts)
     if (k == name) return v;
   throw std::runtime_error("checkpoint has no text '" + name + "'");
+}
+
+bool Checkpoint::has_scalar(const std::string& name) const {
+  return std::any_of(scalars.begin(), scalars.end(), [&](const auto& e) { return e.first == name; });
+}
+
+bool Checkpoint::has_text(const std::string& name) const {
+  return std::any_of(texts.begin(), texts.end(), [&](const auto& e) { return e.first == name; });
 }
 
 void Checkpoint::set_scalar(const std::string& name, Real value) {

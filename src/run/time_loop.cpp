@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "sphark/core/profile.hpp"
@@ -164,9 +162,7 @@ void TimeLoop::restore(const Checkpoint& c) {
     // particle_evals (issue #17) is newer than the other counts: a checkpoint without it counts
     // from the restart on.
     const bool optional = name == "particle_evals";
-    const bool present = !optional || std::any_of(c.scalars.begin(), c.scalars.end(),
-                                                  [&](const auto& s) { return s.first == name; });
-    *ptr = present ? c.scalar(name) : 0;
+    *ptr = !optional || c.has_scalar(name) ? c.scalar(name) : 0;
   }
   // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
   // new grid from the checkpoint time on.
@@ -176,10 +172,8 @@ void TimeLoop::restore(const Checkpoint& c) {
   if (c.scalar("checkpoint_every") != s_.checkpoint_every && s_.checkpoint_every > 0)
     next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
   csv_.restore(c.text("diagnostics.csv"));
-  if (vtk_) {  // frames_dir: absent in checkpoints of before 2026-12-02
-    const bool has_dir = std::any_of(c.texts.begin(), c.texts.end(), [](const auto& e) { return e.first == "frames_dir"; });
-    vtk_->restore(c.text("frames"), has_dir ? std::filesystem::path(c.text("frames_dir")) : std::filesystem::path{});
-  }
+  if (vtk_)  // frames_dir: absent in checkpoints of before 2026-12-02
+    vtk_->restore(c.text("frames"), c.has_text("frames_dir") ? std::filesystem::path(c.text("frames_dir")) : "");
   opts_.initial_dt = c.last_dt;
   opts_.resume_data = c.stepper_data;
 }
@@ -209,7 +203,10 @@ int TimeLoop::stop_signal() const {
 }
 
 void TimeLoop::save(Real time) {
-  if (distributed()) return;  // checkpoints of distributed runs: not yet (the options refuse them)
+  if (distributed()) {  // checkpoints of distributed runs: not yet (the options refuse them)
+    flush_csv();
+    return;
+  }
   ScopedPhase phase(Phase::Output);
   Checkpoint c;
   c.program = s_.program;
@@ -258,7 +255,6 @@ void TimeLoop::record(Real time) {
 void TimeLoop::stop(int signal) {
   res_.status = TimeLoopStatus::Stopped;
   res_.signal = signal;
-  if (distributed()) flush_csv();  // (save() flushes it otherwise)
   save(t_);
 }
 
@@ -271,7 +267,6 @@ void TimeLoop::fail() {
     csv_.row(hooks_.diagnostics(t_, y_.data(), stats()));
     if (frames()) write_frame(t_);
   }
-  if (distributed()) flush_csv();  // (save() flushes it otherwise)
   save(t_);
 }
 
@@ -372,48 +367,6 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
     std::cout.flush();
   }
   return res;
-}
-
-int report_time_loop_end(const TimeLoopResult& r, bool print) {
-  const char* p = r.program.c_str();
-  if (!print) return r.ok() ? 0 : r.status == TimeLoopStatus::Stopped ? 128 + r.signal : 3;
-  switch (r.status) {
-    case TimeLoopStatus::Reached:
-    case TimeLoopStatus::EndedEarly: return 0;
-    case TimeLoopStatus::Stopped:
-      if (r.checkpoint.empty()) {  // a distributed run (no checkpoints yet)
-        std::fprintf(stderr, "%s: %s run stopped by signal %d at t=%.9g; no checkpoint\n", p, r.run.c_str(), r.signal,
-                     r.t_reached);
-        return 128 + r.signal;
-      }
-      std::fprintf(stderr, "%s: %s run stopped by signal %d at t=%.9g; checkpoint %s (continue with --restart %s)\n", p,
-                   r.run.c_str(), r.signal, r.t_reached, r.checkpoint.c_str(), r.checkpoint.c_str());
-      return 128 + r.signal;
-    case TimeLoopStatus::Failed:
-      std::fprintf(stderr, "%s: %s run FAILED at t=%.9g: %s\n%s: last good state: %s%s%s\n", p, r.run.c_str(),
-                   r.t_reached, r.failure.c_str(), p, r.last_frame.empty() ? "" : r.last_frame.c_str(),
-                   r.last_frame.empty() ? "" : " and ", r.checkpoint.c_str());
-      return 3;
-  }
-  return 1;
-}
-
-std::vector<Real> csv_column(const std::string& text, const std::string& column) {
-  std::istringstream in(text);
-  std::string line, cell;
-  std::getline(in, line);
-  std::istringstream head(line);
-  int index = -1;
-  for (int i = 0; std::getline(head, cell, ','); ++i)
-    if (cell == column) index = i;
-  if (index < 0) throw std::runtime_error("no column '" + column + "' in the diagnostics");
-  std::vector<Real> out;
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    for (int i = 0; std::getline(row, cell, ','); ++i)
-      if (i == index) out.push_back(std::stod(cell));
-  }
-  return out;
 }
 
 }  // namespace sphark

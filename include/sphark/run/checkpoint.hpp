@@ -63,6 +63,8 @@ struct Checkpoint {
   // Named lookups; throw std::runtime_error naming the missing entry.
   Real scalar(const std::string& name) const;
   const std::string& text(const std::string& name) const;
+  bool has_scalar(const std::string& name) const;  // entries newer than some checkpoints
+  bool has_text(const std::string& name) const;
   void set_scalar(const std::string& name, Real value);
   void set_text(const std::string& name, std::string value);
 };
