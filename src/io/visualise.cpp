@@ -112,11 +112,12 @@ bool run_python(const std::string& script, const std::vector<std::string>& args,
   return r.ok || warn(script, r.error);
 }
 
-bool run_python_batch(const std::vector<PythonJob>& jobs, bool needs_display, double timeout_seconds) {
+bool run_python_batch(const std::vector<PythonJob>& jobs, bool needs_display, double timeout_seconds, int processes) {
   if (jobs.empty()) return true;
   std::vector<std::string> args;
+  if (processes > 0) args = {"--processes", std::to_string(processes)};
   for (const PythonJob& job : jobs) {
-    if (!args.empty()) args.emplace_back(":::");  // vis/batch.py's job separator
+    if (&job != &jobs.front()) args.emplace_back(":::");  // vis/batch.py's job separator
     args.push_back(job.script);
     args.insert(args.end(), job.args.begin(), job.args.end());
   }

@@ -69,6 +69,10 @@ void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& w
   p.add("--inject-nan-at", &o.inject_nan_at,
         "testing aid: the RHS turns non-finite from this time on (0 = never); exercises retry + clean failure",
         NonNegative{});
+  p.add("--concurrent-runs", &o.concurrent_runs,
+        "runs of this invocation side by side, each on --threads / N threads (1: one after the other; "
+        "a restart, --profile and mpirun run one at a time)",
+        Range{1, 64});
 }
 
 void apply_run_control(TimeLoopSettings& ts, const RunControlOptions& o, const Checkpoint* restart,

@@ -7,10 +7,13 @@
 #include <stdexcept>
 
 #include <map>
+#include <mutex>
+#include <utility>
 
 #include "scene_cost.hpp"
 #include "sphark/cli/run_record.hpp"
 #include "sphark/integrate/stepper.hpp"
+#include "sphark/run/concurrent_jobs.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/scene.hpp"
 #include "sphark/run/signals.hpp"
@@ -60,6 +63,7 @@ void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* 
   scene.set_defaults(r.core);
   add_core_options(parser, r.core, scene.stepper_names());
   scene.add_options(parser);
+  r.control.concurrent_runs = scene.concurrent_runs();
   add_run_options(parser, r.control, scene.checkpoint_help());
   const std::vector<const char*> parse_argv = as_argv(args);
   parser.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
@@ -97,9 +101,27 @@ TimeLoopSettings default_settings(const Scene& scene, const std::string& name, c
   return ts;
 }
 
-TimeLoopHooks hooks_of(SceneRun& run, SetupWatchdog& watchdog) {
+// One run's arming of the set-up watchdog: armed from construction until end() (the time loop
+// started) or destruction (the set-up threw), whichever comes first; once.
+class SetupArming {
+ public:
+  explicit SetupArming(SetupWatchdog& w) : watchdog_(w) { watchdog_.arm(); }
+  ~SetupArming() { end(); }
+  SetupArming(const SetupArming&) = delete;
+  SetupArming& operator=(const SetupArming&) = delete;
+  void end() {
+    if (armed_) watchdog_.disarm();
+    armed_ = false;
+  }
+
+ private:
+  SetupWatchdog& watchdog_;
+  bool armed_ = true;
+};
+
+TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming) {
   TimeLoopHooks h;
-  h.started = [&watchdog] { watchdog.disarm(); };  // the set-up is over: a stop now gets a checkpoint
+  h.started = [&arming] { arming.end(); };  // the set-up is over: a stop now gets a checkpoint
   h.diagnostics = [&run](Real t, const Real* y, const StepperStats& st) { return run.diagnostics(t, y, st); };
   h.frame = [&run](Real t, const Real* y) { return run.frame(t, y); };
   h.finished = [&run](Real t) { return run.finished(t); };
@@ -112,37 +134,82 @@ TimeLoopHooks hooks_of(SceneRun& run, SetupWatchdog& watchdog) {
   return h;
 }
 
-// One run through the time loop; its exit status (report_time_loop_end) and, if not ok, why.
-int run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Checkpoint* restart, std::string& why,
-            SetupWatchdog& watchdog) {
+// One run through the time loop: its exit status (report_time_loop_end) and, if not ok, why; the
+// run and its result are kept for Scene::finished (called in the order of the runs).
+struct RunOutcome {
+  bool ended = false;
+  int status = 0;
+  std::string why;
+  std::unique_ptr<SceneRun> run;
+  TimeLoopResult result;
+};
+
+RunOutcome run_one(Scene& scene, const std::string& name, const ParsedRun& p, const Checkpoint* restart,
+                   SetupWatchdog& watchdog) {
   const std::filesystem::path dir = p.core.out / scene.subdirectory(name);
   prepare_output_dir(dir, scene.program());
-  watchdog.arm();  // until the time loop's stepper exists
-  std::unique_ptr<SceneRun> run = scene.make_run(name, p.core);
-  const TimeLoopHooks hooks = hooks_of(*run, watchdog);
-  TimeLoopSettings ts = default_settings(scene, name, p, dir, restart, *run);
-  run->settings(ts);
+  SetupArming arming(watchdog);  // until the time loop's stepper exists
+  RunOutcome out;
+  out.run = scene.make_run(name, p.core);
+  SceneRun& run = *out.run;
+  const TimeLoopHooks hooks = hooks_of(run, arming);
+  TimeLoopSettings ts = default_settings(scene, name, p, dir, restart, run);
+  run.settings(ts);
   const bool speaker = scene.world().rank() == 0;  // distributed: rank 0 prints
   ts.quiet = ts.quiet || !speaker;
-  const StepperOptions so = run->stepper(p.core, scene.program());
+  const StepperOptions so = run.stepper(p.core, scene.program());
   // A restart takes its state from the checkpoint: the initial conditions are not built.
-  std::vector<Real> y0 = restart ? std::vector<Real>(run->layout().size(), 0.0) : run->initial_state();
+  std::vector<Real> y0 = restart ? std::vector<Real>(run.layout().size(), 0.0) : run.initial_state();
   const detail::PlannedCost& cost = p.costs.at(name);
   if (cost.known && (!restart || restart->y.size() == y0.size())) {  // every rank: the line asks the system (collective)
-    const std::string line = detail::first_line(scene.program(), name, cost, *run, so, restart ? restart->t : 0,
+    const std::string line = detail::first_line(scene.program(), name, cost, run, so, restart ? restart->t : 0,
                                                 restart ? restart->y.data() : y0.data(), p.core.t_end);
     if (speaker) std::fprintf(stderr, "%s\n", line.c_str());
   }
   if (speaker)
     std::fprintf(stderr, "%s: %s run, %zu particles%s, %s -> %s\n", scene.program().c_str(), name.c_str(),
-                 run->layout().particles(), scene.world().distributed() ? " on rank 0" : "", describe(so).c_str(),
+                 run.layout().particles(), scene.world().distributed() ? " on rank 0" : "", describe(so).c_str(),
                  dir.c_str());
-  const TimeLoopResult result = run_time_loop(run->system(), run->layout(), so, std::move(y0), ts, hooks);
-  std::printf("%s %s: %s\n", scene.program().c_str(), name.c_str(), format_stats(result.stats).c_str());
-  scene.finished(name, *run, result);
-  if (result.status == TimeLoopStatus::Failed) why = result.failure;  // as report_time_loop_end prints it
-  const int code = report_time_loop_end(result, speaker);
-  return code;
+  out.result = run_time_loop(run.system(), run.layout(), so, std::move(y0), ts, hooks);
+  std::printf("%s %s: %s\n", scene.program().c_str(), name.c_str(), format_stats(out.result.stats).c_str());
+  if (out.result.status == TimeLoopStatus::Failed) out.why = out.result.failure;  // as report_time_loop_end prints it
+  out.status = report_time_loop_end(out.result, speaker);
+  out.ended = true;
+  return out;
+}
+
+// Runs at a time (--concurrent-runs, 1 for a restart, a profile or a distributed run) and the
+// OpenMP threads of each.
+std::pair<int, int> lanes_and_threads(const Scene& scene, const ParsedRun& p) {
+  int lanes = std::min<int>(std::max(1, p.control.concurrent_runs), static_cast<int>(p.runs.size()));
+  if (p.core.profile || scene.world().distributed()) lanes = 1;  // one process-wide profile; ranks in step
+  lanes = std::max(1, std::min(lanes, std::max(1, p.core.threads)));
+  return {lanes, std::max(1, p.core.threads / lanes)};
+}
+
+// Every run of p.runs (side by side when lanes_and_threads says so); Scene::finished in run order.
+// Returns the runs that ended, in order.
+std::vector<RunOutcome> run_all(Scene& scene, const ParsedRun& p, const Checkpoint* restart, SetupWatchdog& watchdog) {
+  std::vector<RunOutcome> outcomes(p.runs.size());
+  std::mutex finishing;
+  std::size_t finished = 0;  // the runs handed to Scene::finished
+  const auto [lanes, threads] = lanes_and_threads(scene, p);
+  if (lanes > 1)
+    std::fprintf(stderr, "%s: %zu runs, %d at a time on %d thread%s each (--concurrent-runs)\n", scene.program().c_str(),
+                 p.runs.size(), lanes, threads, threads > 1 ? "s" : "");
+  run_concurrently(p.runs.size(), lanes, threads, [&](std::size_t i) {
+    RunOutcome o = run_one(scene, p.runs[i], p, restart, watchdog);
+    const bool go_on = o.status == 0;  // a stop signal (checkpoint written) or a failure (last good state written)
+    std::lock_guard<std::mutex> lock(finishing);
+    outcomes[i] = std::move(o);
+    for (; finished < outcomes.size() && outcomes[finished].ended; ++finished) {
+      RunOutcome& r = outcomes[finished];
+      scene.finished(p.runs[finished], *r.run, r.result);
+      r.run.reset();
+    }
+    return go_on;
+  });
+  return outcomes;
 }
 
 void write_paraview_states(const Scene& scene, const std::filesystem::path& out, const std::vector<std::string>& done) {
@@ -209,11 +276,11 @@ int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& worl
     int status = 0;
     std::vector<std::string> done;
     std::string why;
-    for (const std::string& name : p.runs) {
-      status = run_one(scene, name, p, restart ? &*restart : nullptr, why, watchdog);
-      done.push_back(name);
-      if (status != 0) break;  // a stop signal (checkpoint written) or a failure (last good state written)
-      if (stop_requested()) break;  // a signal after the run ended: no further run
+    const std::vector<RunOutcome> outcomes = run_all(scene, p, restart ? &*restart : nullptr, watchdog);
+    for (std::size_t i = 0; i < outcomes.size(); ++i) {
+      if (!outcomes[i].ended) continue;
+      done.push_back(p.runs[i]);
+      if (status == 0) status = outcomes[i].status, why = outcomes[i].why;  // the first run that did not end ok
     }
     if (!world.distributed()) write_paraview_states(scene, p.core.out, done);  // (they read serial frames)
     const int report = scene.report(p.core, p.runs, status == 0);
@@ -224,17 +291,14 @@ int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& worl
     }
     return record.finish_with_exit_code(status != 0 ? status : report, why);
   } catch (const StopRequested& stop) {  // a set-up loop's poll
-    watchdog.disarm();
     std::fprintf(stderr, "%s: stopped by signal %d during the set-up (no state to checkpoint yet)\n", program.c_str(),
                  stop.signal);
     return record.finish_with_exit_code(128 + stop.signal, "stopped by signal " + std::to_string(stop.signal) +
                                                                " during the set-up");
   } catch (const std::invalid_argument& e) {
-    watchdog.disarm();
     record.finish_with_exit_code(2, e.what());
     exit_usage_error(program, "", e.what());
   } catch (const std::exception& e) {
-    watchdog.disarm();
     // Distributed: an exception of one rank alone cannot be answered here (the others may wait in
     // a collective): MpiSession::run aborts every rank. A CollectiveError is every rank's.
     if (world.size() > 1 && !dynamic_cast<const CollectiveError*>(&e)) throw;

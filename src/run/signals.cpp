@@ -49,14 +49,14 @@ SetupWatchdog::~SetupWatchdog() {
 void SetupWatchdog::arm() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    armed_ = true;
+    ++armed_;
   }
   wake_.notify_all();
 }
 
 void SetupWatchdog::disarm() {
   std::lock_guard<std::mutex> lock(mutex_);  // blocks while a forced stop is under way (it never returns)
-  armed_ = false;
+  if (armed_ > 0) --armed_;
 }
 
 // Polls the flag every 20 ms while armed; a request older than grace_ while still armed ends the
@@ -68,7 +68,7 @@ void SetupWatchdog::watch() {
   while (!quit_) {
     wake_.wait_for(lock, std::chrono::milliseconds(20));
     const int sig = stop_requested();
-    if (!armed_ || sig == 0) {
+    if (armed_ == 0 || sig == 0) {
       seen = {};
       continue;
     }

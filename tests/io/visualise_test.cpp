@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
@@ -133,6 +135,34 @@ TEST(RunPythonBatch, EveryJobRunsAndAFailedOneIsNamed) {
   EXPECT_FALSE(run_python_batch({{"../charts.py", {}}}, false));  // only scripts of vis/
   EXPECT_NE(::testing::internal::GetCapturedStderr().find("expected a script name of vis/"), std::string::npos);
   EXPECT_TRUE(run_python_batch({}, false));  // nothing to draw: nothing started
+}
+
+// The batch's workers draw the same pictures as one process alone, byte for byte.
+TEST(RunPythonBatch, WorkersDrawTheSamePicturesAsOneProcess) {
+  test::TempDir dir;
+  {
+    CsvWriter csv(dir.path() / "diag.csv", {"t", "a", "b", "c"});
+    for (int k = 0; k <= 20; ++k) csv.row({0.05 * k, 1.0 + k, 2.0 * k, std::sin(0.3 * k)});
+  }
+  const std::string csv = (dir.path() / "diag.csv").string();
+  const auto jobs_into = [&](const std::string& tag) {
+    std::vector<PythonJob> jobs;
+    for (const char* y : {"a", "b", "c"})
+      jobs.push_back({"charts.py", {"--csv", csv + ":run", "--x", "t", "--y", y, "--out",
+                                    (dir.path() / (tag + y + ".png")).string()}});
+    return jobs;
+  };
+  ASSERT_TRUE(run_python_batch(jobs_into("one_"), false, 600, 1));
+  ASSERT_TRUE(run_python_batch(jobs_into("two_"), false, 600, 2));
+  const auto bytes = [](const std::filesystem::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* y : {"a", "b", "c"}) {
+    const std::string one = bytes(dir.path() / (std::string("one_") + y + ".png"));
+    EXPECT_GT(one.size(), 1000u) << y;
+    EXPECT_EQ(one, bytes(dir.path() / (std::string("two_") + y + ".png"))) << y;
+  }
 }
 
 // --styles: one matplotlib line style per line; more styles than lines is the usage error.

@@ -24,10 +24,12 @@ struct PythonJob {
   std::vector<std::string> args;
 };
 
-// Every job in one Python process (vis/batch.py): matplotlib, VTK and xvfb-run start once for
-// all of them. Every job runs even if an earlier one failed; true iff all succeeded (a failed
-// job is one line on stderr, then the warning of run_python).
-bool run_python_batch(const std::vector<PythonJob>& jobs, bool needs_display, double timeout_seconds = 600);
+// Every job in one Python batch (vis/batch.py): matplotlib, VTK and xvfb-run start once for
+// all of them, then the jobs are spread over `processes` forked workers (0: every core this
+// process may use; 1: one after the other). Every job runs even if an earlier one failed; true
+// iff all succeeded (a failed job is one line on stderr, then the warning of run_python).
+bool run_python_batch(const std::vector<PythonJob>& jobs, bool needs_display, double timeout_seconds = 600,
+                      int processes = 0);
 
 struct ProcessResult {
   bool ok = false;    // started and exited with status 0

@@ -38,9 +38,10 @@ struct RunControlOptions {
   Real checkpoint_every = 0;      // --checkpoint-every T (0: only on failure or a stop signal)
   std::filesystem::path restart;  // --restart FILE (the file itself: load_restart_option, before parsing)
   Real inject_nan_at = 0;         // --inject-nan-at T (testing aid; 0 = never)
+  int concurrent_runs = 1;        // --concurrent-runs N: runs side by side (run_scene_main; default: the scene's)
 };
-// Registers --checkpoint-every (its help says the checkpoint goes to `where`), --restart and
-// --inject-nan-at.
+// Registers --checkpoint-every (its help says the checkpoint goes to `where`), --restart,
+// --inject-nan-at and --concurrent-runs.
 void add_run_options(OptionParser& p, RunControlOptions& o, const std::string& where);
 // After parsing: --output-every and --checkpoint-every given by the user must not exceed
 // --t-end (p.fail, exit 2); their defaults follow a shorter run (limit_to_t_end).

@@ -109,7 +109,13 @@ class Scene {
   // The scene's parameters of a run as "key=value" lines: stored in its checkpoints, and a
   // restart must give the same text.
   virtual std::string scene_text(const std::string& run) const = 0;
+  // With --concurrent-runs > 1, make_run and the runs it makes are used from several threads at
+  // once (one run each): make_run must not change the scene; finished() is called on one thread
+  // at a time, in the order of run_names().
   virtual std::unique_ptr<SceneRun> make_run(const std::string& run, const CoreOptions& core) = 0;
+  // The default of --concurrent-runs: 1, or more for a scene whose runs are small enough that
+  // side by side, each on fewer threads, they end sooner than one after the other (measured).
+  virtual int concurrent_runs() const { return 1; }
   // The cost estimate (run/cost_estimate.hpp), before anything is built or written: the particles
   // of `run` from the options alone (a real number: options can ask for more than any machine
   // holds; NaN: unknown, then no estimate), the option that sets them (named by a refusal), and

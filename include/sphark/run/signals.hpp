@@ -35,7 +35,9 @@ void throw_if_stop_requested();
 // While armed, a stop request that no poll has acted on within `grace` (the work at hand has no
 // poll: a neighbour build, a large allocation) ends the process from a helper thread:
 // on_forced_stop(signal) (e.g. finish the run record), then std::_Exit(128 + signal). Disarming
-// waits for a forced stop in progress, so the caller and the watchdog never both act.
+// waits for a forced stop in progress, so the caller and the watchdog never both act. Arming
+// counts: runs set up side by side (run/concurrent_jobs.hpp) each arm once and disarm once; the
+// watchdog is armed while any of them is in its set-up (a disarm without an arm does nothing).
 class SetupWatchdog {
  public:
   using OnForcedStop = std::function<void(int signal)>;
@@ -54,7 +56,8 @@ class SetupWatchdog {
   std::chrono::milliseconds grace_;
   std::mutex mutex_;
   std::condition_variable wake_;
-  bool armed_ = false, quit_ = false;
+  int armed_ = 0;  // runs in their set-up
+  bool quit_ = false;
   std::thread thread_;
 };
 

@@ -1,17 +1,12 @@
-#include <atomic>
 #include <cmath>
 #include <ctime>
 #include <exception>
 #include <mutex>
 #include <random>
 #include <stdexcept>
-#include <thread>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "sphark/boundaries/wall_relaxation.hpp"
+#include "sphark/run/concurrent_jobs.hpp"
 #include "sphark/run/signals.hpp"
 #include "sphark/run/time_loop.hpp"  // kStepFloorFraction
 #include "sphark/scenes/cylinder_lattice/lattice_run.hpp"
@@ -157,31 +152,22 @@ std::vector<LatticeRunResult> run_ensemble(const LatticeRunConfig& cfg, const st
                                            int threads,
                                            const std::function<void(std::size_t, const LatticeRunResult&)>& on_done) {
   std::vector<LatticeRunResult> results(jobs.size());
-  std::atomic<std::size_t> next{0};
   std::mutex done_mutex;
-  auto worker = [&] {
-#ifdef _OPENMP
-    omp_set_num_threads(1);  // each run single-threaded: the ensemble is spread over threads
-#endif
-    for (std::size_t i = next++; i < jobs.size(); i = next++) {
-      if (stop_requested()) break;  // SIGINT/SIGTERM: runs in progress finish, no new ones start
-      LatticeRunConfig c = cfg;
-      c.params.map = jobs[i].map;
-      c.params.v0 = jobs[i].v0;
-      c.seed = jobs[i].seed;
-      results[i] = run_lattice(c);
-      results[i].y.clear();
-      if (on_done) {
-        std::lock_guard<std::mutex> lock(done_mutex);
-        on_done(i, results[i]);
-      }
+  // each run single-threaded: the ensemble is spread over threads; SIGINT/SIGTERM: the runs in
+  // progress finish, no new ones start
+  run_concurrently(jobs.size(), threads, 1, [&](std::size_t i) {
+    LatticeRunConfig c = cfg;
+    c.params.map = jobs[i].map;
+    c.params.v0 = jobs[i].v0;
+    c.seed = jobs[i].seed;
+    results[i] = run_lattice(c);
+    results[i].y.clear();
+    if (on_done) {
+      std::lock_guard<std::mutex> lock(done_mutex);
+      on_done(i, results[i]);
     }
-  };
-  const int nt = std::max(1, threads);
-  std::vector<std::thread> pool;
-  for (int k = 1; k < nt; ++k) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
+    return true;
+  });
   return results;
 }
 

@@ -129,8 +129,9 @@ void print_summary(const std::string& label, const DropRunSummary& s) {
 
 int WaterDropScene::report(const CoreOptions& core, const std::vector<std::string>&, bool all_ok) {
   if (results_.empty() || world().rank() != 0) return 0;  // distributed: rank 0 reports
-  if (!all_ok) {  // the failed or stopped run's summary only
-    if (!results_.back().second.loop.ok()) print_summary(results_.back().first, results_.back().second);
+  if (!all_ok) {  // the failed or stopped runs' summaries only
+    for (const auto& [label, s] : results_)
+      if (!s.loop.ok()) print_summary(label, s);
     return 0;
   }
   std::printf("\nwater drop, %s, rtol %g, atol %g, dt %g, t_end %g\n", core.stepper.c_str(), core.rtol, core.atol,
