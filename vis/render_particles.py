@@ -11,7 +11,11 @@ run under `xvfb-run -a /usr/bin/python3 ...` when $DISPLAY is unset.
 
 One picture:
   render_particles.py out/drop.pvd --array density --out density.png [--frame -1]
-Panel of frames x arrays (one colour range per array across its panels unless --range):
+Colour range: per array over its panels, from the --clip and 100 - --clip percentiles of the
+values (default 0.5: a few spikes do not wash out the field; the bar's arrows show the clipped
+ends; --clip 0: the full data range), unless --range. Large or small scales go into the bar's
+label (x 1ek) rather than an offset that would overlap the title.
+Panel of frames x arrays:
   render_particles.py out/drop.pvd --grid 2x2 --frames 0 1 2 -1 --array pressure --out g.png
   render_particles.py out/drop.pvd --grid 1x2 --frame -1 --arrays density velocity --out g.png
 """
@@ -119,6 +123,32 @@ def point_size_3d(bounds, spacing, height_px, view_angle_deg=30.0):
     return spacing * height_px * ZOOM_3D * math.cos(half) / (2 * r) if r > 0 else 4.0
 
 
+def clipped_range(values, percent):
+    """(lo, hi): the percent and 100 - percent percentiles of the finite values (0: min, max)."""
+    import numpy as np
+    v = values[np.isfinite(values)]
+    if v.size == 0:
+        return 0.0, 0.0
+    if percent <= 0:
+        return float(v.min()), float(v.max())
+    lo, hi = np.percentile(v, [percent, 100 - percent])
+    return float(lo), float(hi)
+
+
+def scale_bar_ticks(bar, lo, hi):
+    """Tick labels in units of 10^k, with k in the bar's label beside it (no offset text)."""
+    import matplotlib.ticker as ticker
+    big = max(abs(lo), abs(hi))
+    if not big > 0 or 1e-2 <= big < 1e4:
+        bar.formatter = ticker.ScalarFormatter(useOffset=False)
+        bar.update_ticks()
+        return
+    k = math.floor(math.log10(big))
+    bar.formatter = ticker.FuncFormatter(lambda v, _pos: f"{v / 10.0 ** k:g}")
+    bar.update_ticks()
+    bar.set_label(f"× 1e{k}", fontsize=8)
+
+
 def values_of(arr, comp):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     import numpy as np
@@ -155,6 +185,8 @@ def render_points(vtk, poly, name, comp, lo, hi, cmap, rect, px, point_size, fla
     actor.SetMapper(mapper)
     actor.GetProperty().SetPointSize(point_size)
     actor.GetProperty().SetRenderPointsAsSpheres(True)
+    if flat:  # a 2D field: flat discs in their true colour, not shaded balls with dark rims
+        actor.GetProperty().LightingOff()
 
     ren = vtk.vtkRenderer()
     ren.SetBackground(1, 1, 1)
@@ -225,7 +257,9 @@ def main(argv=None):
     ap.add_argument("--frames", nargs="+", type=int, help="several frames (grid mode)")
     ap.add_argument("--grid", metavar="RxC", help="panel layout, e.g. 2x2")
     ap.add_argument("--range", nargs=2, type=float, metavar=("LO", "HI"),
-                    help="colour range (default: data range, per array over its panels)")
+                    help="colour range (default: see --clip, per array over its panels)")
+    ap.add_argument("--clip", type=float, default=0.5, metavar="P",
+                    help="colour range from the P and 100-P percentiles (default 0.5; 0: min..max)")
     ap.add_argument("--size", nargs=2, type=int, metavar=("W", "H"),
                     help="PNG size in pixels (default 900 900; grid: 600 x 540 per panel)")
     ap.add_argument("--point-size", type=float,
@@ -258,6 +292,8 @@ def main(argv=None):
     auto_size = args.size is None and len(panels) == 1
     if min(size) < 50:
         fail(f"--size: {size[0]} x {size[1]} is too small")
+    if not 0 <= args.clip < 50:
+        fail(f"--clip: need 0 <= P < 50 (got {args.clip:g})")
     if args.range and not args.range[0] < args.range[1]:
         fail(f"--range: need LO < HI (got {args.range[0]:g} {args.range[1]:g})")
 
@@ -275,13 +311,16 @@ def main(argv=None):
         if f not in loaded:
             t, path = pick(frames, f)
             loaded[f] = load(vtk, t, path) + (path,)
-    ranges = {}  # per array: --range, else the union of the ranges of its panels
+    ranges = {}  # per array: --range, else the union of the clipped ranges of its panels
+    extent = {}  # per array: the full data range over its panels
     for f, a in panels:
         arr, comp = point_array(loaded[f][0], a, args.component, loaded[f][2])
-        lo, hi = args.range or arr.GetRange(comp)
+        lo, hi = args.range or clipped_range(values_of(arr, comp), args.clip)
+        full = arr.GetRange(comp)
         if a in ranges:
             lo, hi = min(lo, ranges[a][0]), max(hi, ranges[a][1])
-        ranges[a] = (lo, hi)
+            full = (min(full[0], extent[a][0]), max(full[1], extent[a][1]))
+        ranges[a], extent[a] = (lo, hi), full
 
     if auto_size:  # one flat panel: fit the PNG height to the data's aspect ratio
         b = loaded[panels[0][0]][0].GetBounds()
@@ -345,7 +384,10 @@ def main(argv=None):
         mappable = matplotlib.cm.ScalarMappable(matplotlib.colors.Normalize(lo, hi), cmap)
         from mpl_toolkits.axes_grid1 import make_axes_locatable
         cax = make_axes_locatable(ax).append_axes("right", size="4%", pad=0.08)
-        fig.colorbar(mappable, cax=cax)
+        extend = {(False, False): "neither", (True, False): "min", (False, True): "max",
+                  (True, True): "both"}[(extent[a][0] < lo, extent[a][1] > hi)]
+        bar = fig.colorbar(mappable, cax=cax, extend=extend)
+        scale_bar_ticks(bar, lo, hi)
         cax.tick_params(labelsize=8)
         when = f"   t = {time:.6g}" if time is not None and math.isfinite(time) else ""
         ax.set_title(label(a, arr, args.component) + when, fontsize=10)

@@ -1,5 +1,6 @@
 // run_scene_main: the one driver of every time-integrating example (run/scene.hpp).
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <exception>
 #include <functional>
@@ -187,6 +188,46 @@ std::pair<int, int> lanes_and_threads(const Scene& scene, const ParsedRun& p) {
   return {lanes, std::max(1, p.core.threads / lanes)};
 }
 
+// The pictures of the runs that ended well (Scene::run_pictures), drawn by lanes that have no run
+// left to start while the others still run; the scene's report draws those still pending.
+class EarlyPictures {
+ public:
+  EarlyPictures(Scene& scene, const ParsedRun& p, int lanes)
+      : scene_(scene), core_(p.core), runs_(p.runs.size()), on_(lanes > 1 && p.core.render && !scene.world().distributed()) {}
+  void started() { ++started_; }
+  void ended_well(const std::string& run) {  // under the driver's lock, after Scene::finished
+    if (on_) queue_.push_back(run);
+  }
+  void ended() { ++ended_; }
+  // In a lane whose run just ended well: while no run is left to start and another still runs,
+  // draw the queue (the runs queued so far in one Python process: it starts once for them). Once
+  // every run has ended, report() draws the rest with its comparisons, on every core.
+  void draw_while_idle(std::mutex& lock) {
+    while (on_ && started_.load() == runs_ && ended_.load() < runs_ && stop_requested() == 0) {
+      std::vector<std::string> runs;
+      {
+        std::lock_guard<std::mutex> guard(lock);
+        runs.swap(queue_);
+      }
+      if (runs.empty()) return;
+      std::vector<PythonJob> jobs;
+      for (const std::string& run : runs)
+        for (PythonJob& job : scene_.run_pictures(run, core_)) jobs.push_back(std::move(job));
+      if (!jobs.empty()) run_python_batch(jobs, true, 600, 1);
+      std::lock_guard<std::mutex> guard(lock);
+      for (const std::string& run : runs) scene_.set_run_pictures_drawn(run);
+    }
+  }
+
+ private:
+  Scene& scene_;
+  const CoreOptions& core_;
+  const std::size_t runs_;
+  const bool on_;
+  std::atomic<std::size_t> started_{0}, ended_{0};
+  std::vector<std::string> queue_;
+};
+
 // Every run of p.runs (side by side when lanes_and_threads says so); Scene::finished in run order.
 // Returns the runs that ended, in order.
 std::vector<RunOutcome> run_all(Scene& scene, const ParsedRun& p, const Checkpoint* restart, SetupWatchdog& watchdog) {
@@ -197,16 +238,23 @@ std::vector<RunOutcome> run_all(Scene& scene, const ParsedRun& p, const Checkpoi
   if (lanes > 1)
     std::fprintf(stderr, "%s: %zu runs, %d at a time on %d thread%s each (--concurrent-runs)\n", scene.program().c_str(),
                  p.runs.size(), lanes, threads, threads > 1 ? "s" : "");
+  EarlyPictures pictures(scene, p, lanes);
   run_concurrently(p.runs.size(), lanes, threads, [&](std::size_t i) {
+    pictures.started();
     RunOutcome o = run_one(scene, p.runs[i], p, restart, watchdog);
     const bool go_on = o.status == 0;  // a stop signal (checkpoint written) or a failure (last good state written)
-    std::lock_guard<std::mutex> lock(finishing);
-    outcomes[i] = std::move(o);
-    for (; finished < outcomes.size() && outcomes[finished].ended; ++finished) {
-      RunOutcome& r = outcomes[finished];
-      scene.finished(p.runs[finished], *r.run, r.result);
-      r.run.reset();
+    {
+      std::lock_guard<std::mutex> lock(finishing);
+      pictures.ended();
+      outcomes[i] = std::move(o);
+      for (; finished < outcomes.size() && outcomes[finished].ended; ++finished) {
+        RunOutcome& r = outcomes[finished];
+        scene.finished(p.runs[finished], *r.run, r.result);
+        if (r.status == 0) pictures.ended_well(p.runs[finished]);
+        r.run.reset();
+      }
     }
+    if (go_on) pictures.draw_while_idle(finishing);
     return go_on;
   });
   return outcomes;

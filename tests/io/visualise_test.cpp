@@ -105,6 +105,13 @@ TEST(RunPython, RendersAFrameFromVtkSeriesWriter) {
   EXPECT_NE(err.find("no point array 'nope'"), std::string::npos) << err;
   EXPECT_NE(err.find("sphark: warning: vis/render_particles.py: exited with status 2"),
             std::string::npos) << err;
+  // The colour range's percentile must leave a range: 50 % from both ends leaves none.
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_python("render_particles.py",
+                          {w.pvd_path().string(), "--array", "density", "--clip", "50", "--out", png.string()},
+                          false));
+  const std::string clip_err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(clip_err.find("--clip: need 0 <= P < 50 (got 50)"), std::string::npos) << clip_err;
 }
 
 // One Python process for several pictures: every job runs even after a failed one, the result

@@ -155,3 +155,28 @@ TEST(ConcurrentRuns, SigintCheckpointsBothRunsInProgressAndStartsNoOther) {
   EXPECT_FALSE(fs::exists(out / "cleaned"));  // the third and fourth runs never started
   EXPECT_FALSE(fs::exists(out / "control"));
 }
+
+// With pictures: a lane with no run left to start draws the pictures of the runs that have ended
+// (Scene::run_pictures) while the other runs; the report draws the rest with its comparisons.
+// Every picture is drawn once, and every one is there.
+TEST(ConcurrentRuns, EveryPictureDrawnOnce) {
+  const fs::path bin = require_example("water_drop");
+  TempDir dir;
+  const fs::path out = dir.path() / "pictures";
+  const std::vector<std::string> opts = {"--spacing", "0.2", "--t-end", "0.004", "--output-every", "0.001",
+                                         "--threads", "2", "--concurrent-runs", "2", "--out", out.string()};
+  const Finished f = run(bin, opts, dir.path());
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const std::string printed = f.out + f.err;
+  std::vector<std::string> pictures = {"div_v.png", "density_error.png", "kinetic_energy.png"};
+  for (const std::string& r : kRunsInOrder) pictures.insert(pictures.end(), {"semi_axes_" + r + ".png", "frames_" + r + ".png"});
+  for (const std::string& png : pictures) {
+    SCOPED_TRACE(png);
+    EXPECT_TRUE(fs::is_regular_file(out / png));
+    const std::string line = (out / png).string() + "\n";
+    std::size_t count = 0;
+    for (std::size_t at = printed.find(line); at != std::string::npos; at = printed.find(line, at + 1)) ++count;
+    EXPECT_EQ(count, 1u) << printed;
+  }
+  EXPECT_EQ(printed.find("warning"), std::string::npos) << printed;
+}

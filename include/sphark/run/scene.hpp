@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string_view>
 #include <string>
 #include <utility>
@@ -38,6 +39,7 @@
 #include "sphark/integrate/stepper_options.hpp"
 #include "sphark/io/paraview_state.hpp"
 #include "sphark/io/particle_frame.hpp"
+#include "sphark/io/visualise.hpp"
 #include "sphark/parallel/communicator.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/time_loop.hpp"
@@ -145,6 +147,15 @@ class Scene {
   virtual std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& /*runs_done*/) const {
     return {};
   }
+  // The pictures of one run alone (its frames, its curves against an exact solution), once it
+  // has ended well and finished() has seen it. With --concurrent-runs, a lane that has no run
+  // left to start draws them there (one Python process) while the other runs go on; report()
+  // draws those still pending (run_pictures_pending), with its comparisons.
+  virtual std::vector<PythonJob> run_pictures(const std::string& /*run*/, const CoreOptions& /*core*/) const {
+    return {};
+  }
+  bool run_pictures_pending(const std::string& run) const { return run_pictures_drawn_.count(run) == 0; }
+  void set_run_pictures_drawn(const std::string& run) { run_pictures_drawn_.insert(run); }  // by the driver
 
   // Distributed runs (mpirun, docs/scaling.md): a scene that supports them builds its runs on
   // world() (set by run_scene_main before the options are parsed; serial otherwise), with the
@@ -155,6 +166,7 @@ class Scene {
 
  private:
   Communicator world_;
+  std::set<std::string> run_pictures_drawn_;
 };
 
 // Parses the options, runs the scene and returns the exit code (see the top of this file).

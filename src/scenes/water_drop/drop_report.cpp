@@ -48,10 +48,29 @@ void write_drop_summary(const std::filesystem::path& out, const DropResults& res
   print_cleaning_ratios(results, "", "delta-SPH");
 }
 
-// Every picture in one Python process (vis/batch.py): the charts of Figs. 8-10 with every run
-// (the seed's scheme solid, delta-SPH dashed by its label), each run's semi-axes against the
-// exact ellipse, each run's frames.
-void make_drop_pictures(const std::filesystem::path& out, const DropResults& results, Real frame_every, Real t_end) {
+// One run's pictures: its semi-axes against the exact ellipse and its frames at t = 0, the first
+// squeeze (t ~ 0.012), the first maximum along x (t ~ 0.035) and the end.
+std::vector<PythonJob> drop_run_pictures(const std::filesystem::path& out, const std::string& label, Real frame_every,
+                                         Real t_end) {
+  std::vector<PythonJob> jobs;
+  jobs.push_back({"charts.py",
+                  {"--csv", (out / label / "diagnostics.csv").string(), "--x", "t", "--y", "semi_axis_x", "--y-extra",
+                   "semi_axis_x_exact:a exact", "--y-extra", "semi_axis_y", "--y-extra", "semi_axis_y_exact:b exact",
+                   "--ylabel", "semi-axis", "--title", "water drop, " + run_legend(label) + ": semi-axes vs exact ellipse",
+                   "--out", (out / ("semi_axes_" + label + ".png")).string()}});
+  PythonJob frames{"render_particles.py", {(out / label / "drop.pvd").string(), "--grid", "2x2", "--frames"}};
+  for (Real t : {0.0, 0.012, 0.035}) frames.args.push_back(std::to_string(std::lround(std::min(t, t_end) / frame_every)));
+  frames.args.insert(frames.args.end(), {"-1", "--array", "pressure", "--title", "water drop, " + run_legend(label),
+                                         "--out", (out / ("frames_" + label + ".png")).string()});
+  jobs.push_back(std::move(frames));
+  return jobs;
+}
+
+// The pictures left in one Python process (vis/batch.py): the charts of Figs. 8-10 with every run
+// (the seed's scheme solid, delta-SPH dashed by its label), and the pictures of the runs in
+// `pending` (drop_run_pictures; the others were drawn while runs still went on).
+void make_drop_pictures(const std::filesystem::path& out, const DropResults& results, const std::vector<std::string>& pending,
+                        Real frame_every, Real t_end) {
   std::vector<PythonJob> jobs;
   const auto chart = [&](const std::string& y, const std::string& ylabel, const std::string& png, bool logy,
                          const std::string& title) {
@@ -68,19 +87,8 @@ void make_drop_pictures(const std::filesystem::path& out, const DropResults& res
   chart("max_rel_density_error", "max |rho - rho0| / rho0", "density_error.png", false,
         "water drop: maximum density error (paper Fig. 9)");
   chart("kinetic_energy", "kinetic energy  [J/m]", "kinetic_energy.png", false, "water drop: kinetic energy (paper Fig. 10)");
-  for (const auto& [label, r] : results) {
-    jobs.push_back({"charts.py",
-                    {"--csv", (out / label / "diagnostics.csv").string(), "--x", "t", "--y", "semi_axis_x", "--y-extra",
-                     "semi_axis_x_exact:a exact", "--y-extra", "semi_axis_y", "--y-extra", "semi_axis_y_exact:b exact",
-                     "--ylabel", "semi-axis", "--title", "water drop, " + run_legend(label) + ": semi-axes vs exact ellipse",
-                     "--out", (out / ("semi_axes_" + label + ".png")).string()}});
-    // frames at t = 0, the first squeeze (t ~ 0.012), the first maximum along x (t ~ 0.035), the end
-    PythonJob frames{"render_particles.py", {(out / label / "drop.pvd").string(), "--grid", "2x2", "--frames"}};
-    for (Real t : {0.0, 0.012, 0.035}) frames.args.push_back(std::to_string(std::lround(std::min(t, t_end) / frame_every)));
-    frames.args.insert(frames.args.end(), {"-1", "--array", "pressure", "--title", "water drop, " + run_legend(label),
-                                           "--out", (out / ("frames_" + label + ".png")).string()});
-    jobs.push_back(std::move(frames));
-  }
+  for (const std::string& label : pending)
+    for (PythonJob& job : drop_run_pictures(out, label, frame_every, t_end)) jobs.push_back(std::move(job));
   run_python_batch(jobs, true);
 }
 

@@ -74,7 +74,10 @@ using DropResults = std::vector<std::pair<std::string, DropRunSummary>>;
 void write_drop_summary(const std::filesystem::path& out, const DropResults& results);
 // Charts (paper Figs. 8-10 and the semi-axes against the exact ellipse) and rendered frames.
 // Frames were written every frame_every up to t_end.
-void make_drop_pictures(const std::filesystem::path& out, const DropResults& results, Real frame_every, Real t_end);
+std::vector<PythonJob> drop_run_pictures(const std::filesystem::path& out, const std::string& label, Real frame_every,
+                                         Real t_end);
+void make_drop_pictures(const std::filesystem::path& out, const DropResults& results, const std::vector<std::string>& pending,
+                        Real frame_every, Real t_end);
 // "seed's WCSPH, cleaned", "delta-SPH, control": a run's label in legends, titles and summaries.
 std::string run_legend(const std::string& run);
 

@@ -49,6 +49,7 @@ void WaterDropScene::add_options(OptionParser& p) {
                "Antuono et al. (2010) correction of the density diffusion (off: Molteni & Colagrossi)");
   p.add("--sigma", &sc.clean_sigma, "cleaning damping sigma, tau = h / (sigma c_h)", NonNegative{});
   p.add("--cfl", &sc.cfl, "CFL number of the stability limit (leapfrog step, adaptive step cap)", Positive{});
+  p.add("--skin", &sc.skin, "Verlet skin of the neighbour lists / support radius (cost only)", Range{0.0, 2.0});
   p.add("--initial-pressure", &initial_pressure_, "initial density from the exact pressure, or rho0 everywhere",
         OneOf{{"exact", "zero"}});
   p.add("--diagnostics-every", &diagnostics_every_, "time between diagnostics rows", Positive{});
@@ -127,6 +128,14 @@ void print_summary(const std::string& label, const DropRunSummary& s) {
 }
 }  // namespace
 
+namespace {
+Real frame_interval(const CoreOptions& core) { return core.output_every > 0 ? core.output_every : core.t_end; }
+}  // namespace
+
+std::vector<PythonJob> WaterDropScene::run_pictures(const std::string& run, const CoreOptions& core) const {
+  return drop_run_pictures(core.out, run, frame_interval(core), core.t_end);
+}
+
 int WaterDropScene::report(const CoreOptions& core, const std::vector<std::string>&, bool all_ok) {
   if (results_.empty() || world().rank() != 0) return 0;  // distributed: rank 0 reports
   if (!all_ok) {  // the failed or stopped runs' summaries only
@@ -138,7 +147,12 @@ int WaterDropScene::report(const CoreOptions& core, const std::vector<std::strin
               core.dt, core.t_end);
   for (const auto& [label, s] : results_) print_summary(label, s);
   write_drop_summary(core.out, results_);
-  if (core.render && !world().distributed()) make_drop_pictures(core.out, results_, core.output_every > 0 ? core.output_every : core.t_end, core.t_end);
+  if (core.render && !world().distributed()) {
+    std::vector<std::string> pending;
+    for (const auto& [label, s] : results_)
+      if (run_pictures_pending(label)) pending.push_back(label);
+    make_drop_pictures(core.out, results_, pending, frame_interval(core), core.t_end);
+  }
   std::string runs;
   for (const auto& [label, s] : results_) runs += (runs.empty() ? "" : ",") + label;
   if (world().distributed()) {  // parallel VTK, no pictures or ParaView state

@@ -96,6 +96,7 @@ WaterDrop make_water_drop(const WaterDropConfig& cfg) {
   p.cleaning = cfg.cleaning;
   p.clean_sigma = cfg.clean_sigma;
   p.cfl = cfg.cfl;
+  p.skin_fraction = cfg.skin;
   const Real w2 = cfg.omega * cfg.omega;
   p.body_force = [w2](const Vec<2>& x) -> Vec<2> { return -w2 * x; };
   p.body_potential = [w2](const Vec<2>& x) -> Real { return 0.5 * w2 * x.squaredNorm(); };

@@ -39,6 +39,8 @@ class WaterDropScene final : public Scene {
   std::unique_ptr<SceneRun> make_probe_run(const std::string& run, const CoreOptions& core, Real particles) override;
   void finished(const std::string& run, SceneRun& r, const TimeLoopResult& result) override;
   int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
+  // A run's semi-axes against the exact ellipse and its frames (the comparisons: report()).
+  std::vector<PythonJob> run_pictures(const std::string& run, const CoreOptions& core) const override;
   std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& runs_done) const override;
 
  private:
