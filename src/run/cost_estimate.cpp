@@ -130,7 +130,7 @@ CostEstimate estimate_memory(double particles, const ProbeMeasurement& probe) {
 }
 
 void estimate_time(CostEstimate& e, OdeSystem& system, const StepperOptions& so, Real t0, const Real* y0, Real t_end,
-                   const ProbeMeasurement& probe) {
+                   Real longest_step, const ProbeMeasurement& probe) {
   const bool leapfrog = so.method == "leapfrog" || so.method == "leapfrog-rev";
   Real dt = so.fixed_dt;
   if (!(dt > 0)) {
@@ -143,6 +143,10 @@ void estimate_time(CostEstimate& e, OdeSystem& system, const StepperOptions& so,
     dt = leapfrog || so.cap_by_stability ? so.cfl_safety * stable : kUncappedReach * stable;
     if (so.max_dt > 0) dt = std::min(dt, so.max_dt);
     e.steps_at_least = !leapfrog && so.cap_by_stability;
+  }
+  if (longest_step > 0 && dt > longest_step) {  // the time loop lands on every row: no step is longer
+    dt = longest_step;
+    e.steps_at_least = true;
   }
   if (!(dt > 0) || !std::isfinite(dt)) return;
   e.first_step = dt;

@@ -164,7 +164,7 @@ RunOutcome run_one(Scene& scene, const std::string& name, const ParsedRun& p, co
   const detail::PlannedCost& cost = p.costs.at(name);
   if (cost.known && (!restart || restart->y.size() == y0.size())) {  // every rank: the line asks the system (collective)
     const std::string line = detail::first_line(scene.program(), name, cost, run, so, restart ? restart->t : 0,
-                                                restart ? restart->y.data() : y0.data(), p.core.t_end);
+                                                restart ? restart->y.data() : y0.data(), p.core.t_end, ts.sample_every);
     if (speaker) std::fprintf(stderr, "%s\n", line.c_str());
   }
   if (speaker)

@@ -45,11 +45,11 @@ PlannedCost plan_cost(Scene& scene, const std::string& run, const CoreOptions& c
 }
 
 std::string first_line(const std::string& program, const std::string& run, const PlannedCost& cost, SceneRun& built,
-                       const StepperOptions& so, Real t0, const Real* y0, Real t_end) {
+                       const StepperOptions& so, Real t0, const Real* y0, Real t_end, Real longest_step) {
   CostEstimate e = cost.memory;
   e.particles = static_cast<double>(built.layout().particles());
   e.bytes = e.particles * e.bytes_per_particle;
-  estimate_time(e, built.system(), so, t0, y0, t_end, cost.probe);
+  estimate_time(e, built.system(), so, t0, y0, t_end, longest_step, cost.probe);
   return cost_line(program, run, e);
 }
 

@@ -18,8 +18,9 @@ struct PlannedCost {
 // 2 (as is a value the scene's probe rejects with std::invalid_argument).
 PlannedCost plan_cost(Scene& scene, const std::string& run, const CoreOptions& core, const OptionParser& p);
 
-// The run's first line (cost_line), with its steps and time from the built run at (t0, y0).
+// The run's first line (cost_line), with its steps and time from the built run at (t0, y0);
+// longest_step: the diagnostics interval (estimate_time).
 std::string first_line(const std::string& program, const std::string& run, const PlannedCost& cost, SceneRun& built,
-                       const StepperOptions& so, Real t0, const Real* y0, Real t_end);
+                       const StepperOptions& so, Real t0, const Real* y0, Real t_end, Real longest_step);
 
 }  // namespace sphark::detail

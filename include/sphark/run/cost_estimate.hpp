@@ -78,8 +78,10 @@ struct CostEstimate {
 // Memory of a run of `particles` particles from its probe.
 CostEstimate estimate_memory(double particles, const ProbeMeasurement& probe);
 // Adds steps and time of the run from (t0, y0) to t_end with stepper options `so` (see above).
+// longest_step > 0: no step is longer (the time loop's diagnostics interval: it lands on every
+// row), so the steps are at least (t_end - t0) / longest_step.
 void estimate_time(CostEstimate& e, OdeSystem& system, const StepperOptions& so, Real t0, const Real* y0,
-                   Real t_end, const ProbeMeasurement& probe);
+                   Real t_end, Real longest_step, const ProbeMeasurement& probe);
 
 // "3.1 GB", "512 kB"; "2.5 s", "3.4 h", "12 days".
 std::string bytes_text(double bytes);
