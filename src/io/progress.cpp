@@ -36,7 +36,7 @@ std::string ProgressReporter::format(Real t, long step, Real dt, double elapsed)
   char buf[256];
   int n = std::snprintf(buf, sizeof buf, "t = %.3g / %.3g (%.0f%%)  step %ld  dt %.2g  elapsed %s",
                         t, t_end_, 100 * fraction, step, dt, seconds_text(elapsed).c_str());
-  std::string line(buf, static_cast<std::size_t>(n));
+  std::string line = (label_.empty() ? std::string() : label_ + ": ") + std::string(buf, static_cast<std::size_t>(n));
   if (fraction > 0 && fraction < 1) {
     line += "  ETA " + seconds_text(elapsed * (1 - fraction) / fraction);
   }
@@ -59,7 +59,7 @@ void ProgressReporter::finish() {
   char buf[160];
   std::snprintf(buf, sizeof buf, "done: t = %.6g  steps %ld  elapsed %s", t_last_, step_last_,
                 seconds_text(elapsed).c_str());
-  *out_ << buf << '\n' << std::flush;
+  *out_ << (label_.empty() ? std::string() : label_ + ": ") << buf << '\n' << std::flush;
 }
 
 }  // namespace sphark

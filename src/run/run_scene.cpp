@@ -135,6 +135,15 @@ TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming) {
   return h;
 }
 
+// Runs at a time (--concurrent-runs, 1 for a restart, a profile or a distributed run) and the
+// OpenMP threads of each.
+std::pair<int, int> lanes_and_threads(const Scene& scene, const ParsedRun& p) {
+  int lanes = std::min<int>(std::max(1, p.control.concurrent_runs), static_cast<int>(p.runs.size()));
+  if (p.core.profile || scene.world().distributed()) lanes = 1;  // one process-wide profile; ranks in step
+  lanes = std::max(1, std::min(lanes, std::max(1, p.core.threads)));
+  return {lanes, std::max(1, p.core.threads / lanes)};
+}
+
 // One run through the time loop: its exit status (report_time_loop_end) and, if not ok, why; the
 // run and its result are kept for Scene::finished (called in the order of the runs).
 struct RunOutcome {
@@ -156,6 +165,7 @@ RunOutcome run_one(Scene& scene, const std::string& name, const ParsedRun& p, co
   const TimeLoopHooks hooks = hooks_of(run, arming);
   TimeLoopSettings ts = default_settings(scene, name, p, dir, restart, run);
   run.settings(ts);
+  if (lanes_and_threads(scene, p).first > 1) ts.progress_label = name;  // runs side by side: whose line
   const bool speaker = scene.world().rank() == 0;  // distributed: rank 0 prints
   ts.quiet = ts.quiet || !speaker;
   const StepperOptions so = run.stepper(p.core, scene.program());
@@ -177,15 +187,6 @@ RunOutcome run_one(Scene& scene, const std::string& name, const ParsedRun& p, co
   out.status = report_time_loop_end(out.result, speaker);
   out.ended = true;
   return out;
-}
-
-// Runs at a time (--concurrent-runs, 1 for a restart, a profile or a distributed run) and the
-// OpenMP threads of each.
-std::pair<int, int> lanes_and_threads(const Scene& scene, const ParsedRun& p) {
-  int lanes = std::min<int>(std::max(1, p.control.concurrent_runs), static_cast<int>(p.runs.size()));
-  if (p.core.profile || scene.world().distributed()) lanes = 1;  // one process-wide profile; ranks in step
-  lanes = std::max(1, std::min(lanes, std::max(1, p.core.threads)));
-  return {lanes, std::max(1, p.core.threads / lanes)};
 }
 
 // The pictures of the runs that ended well (Scene::run_pictures), drawn by lanes that have no run

@@ -295,6 +295,7 @@ void TimeLoop::checkpoint_if_due() {
 TimeLoopResult TimeLoop::run() {
   if (hooks_.started) hooks_.started();
   ProgressReporter progress(t_, t_end_, s_.progress_interval);
+  progress.set_label(s_.progress_label);
   const auto report_progress = [&] {
     if (!s_.quiet) progress.update(t_, stats().steps, stepper_->stats().last_dt);
   };

@@ -22,6 +22,17 @@ TEST(ProgressReporter, FormatsTheDocumentedLine) {
   EXPECT_TRUE(out.str().empty());
 }
 
+TEST(ProgressReporter, ALabelPrefixesEveryLine) {
+  std::ostringstream out;
+  ProgressReporter p(0.0, 1.0, 0, out);
+  p.set_label("seed_control");
+  EXPECT_EQ(p.format(0.5, 10, 0.1, 4.0), "seed_control: t = 0.5 / 1 (50%)  step 10  dt 0.1  elapsed 4 s  ETA 4 s");
+  EXPECT_TRUE(p.update(0.5, 10, 0.1));
+  p.finish();
+  EXPECT_TRUE(out.str().starts_with("seed_control: t = 0.5 / 1 (50%)")) << out.str();
+  EXPECT_TRUE(out.str().ends_with("\nseed_control: done: t = 0.5  steps 10  elapsed 0 s\n")) << out.str();
+}
+
 TEST(ProgressReporter, PrintsAtMostOncePerInterval) {
   std::ostringstream out;
   ProgressReporter slow(0, 1, 3600, out);

@@ -22,6 +22,9 @@ class ProgressReporter {
   // Prints the final line unconditionally: "done: t = 0.1  steps 4000  elapsed 40 s".
   void finish();
 
+  // Every line begins with "<label>: " (runs side by side: whose line it is); empty: no prefix.
+  void set_label(std::string label) { label_ = std::move(label); }
+
   // The line update() would print for these values and `elapsed_seconds` of wall time.
   std::string format(Real t, long step, Real dt, double elapsed_seconds) const;
 
@@ -33,6 +36,7 @@ class ProgressReporter {
   Clock::time_point start_, last_;
   Real t_last_ = 0;
   long step_last_ = 0;
+  std::string label_;
 };
 
 }  // namespace sphark

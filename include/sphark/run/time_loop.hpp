@@ -69,6 +69,7 @@ struct TimeLoopSettings {
   Real step_floor_fraction = kStepFloorFraction;
   bool quiet = false;                   // no progress lines
   double progress_interval = 2;         // seconds between progress lines
+  std::string progress_label;           // prefix of the progress lines (runs side by side: the run)
 };
 
 struct TimeLoopHooks {

@@ -97,9 +97,15 @@ void CleaningDiscScene::set_defaults(CoreOptions& core) {
   core.out = "out/cleaning_disc";
   core.t_end = 10;
   core.output_every = 0.05;
-  core.rtol = 1e-7;
+  // Aimed at: the cleaning energy of the sigma = 0 runs (an exact invariant) kept to 1e-4 relative,
+  // far below what Fig. 1 resolves. The cheapest run of the stepper study at that level
+  // (docs/time_integration.md, "Disc"): VERNER_8_5_6 at rtol 1e-4 without the CFL cap; at full
+  // size it changes the energy by 6e-10, prints the old default's (DP5 capped, rtol 1e-7) growth
+  // rates and blow-up times to their digits, with 4.7x fewer RHS evaluations.
+  core.rtol = 1e-4;
   core.atol = 1e-10;
-  core.stepper = "ARKODE_DORMAND_PRINCE_7_4_5";
+  core.stepper = "ARKODE_VERNER_8_5_6";
+  core.step_cap = false;
 }
 
 std::vector<std::string> CleaningDiscScene::stepper_names() const {
