@@ -10,6 +10,7 @@
 
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
+#include "../support/file_bytes.hpp"
 #include "sphark/io/vtk_series.hpp"
 #include "../support/temp_dir.hpp"
 
@@ -114,6 +115,31 @@ TEST(RunPython, RendersAFrameFromVtkSeriesWriter) {
   EXPECT_NE(clip_err.find("--clip: need 0 <= P < 50 (got 50)"), std::string::npos) << clip_err;
 }
 
+// --clip P colours by the P and 100 - P percentiles of the values: 201 values, two spikes
+// (-1e6, 1e6) and 1 .. 199 between, so at P = 0.5 (index 0.005 x 200 = 1 and 199 of the sorted
+// values, no interpolation) the range is exactly [1, 199]: the same picture as --range 1 199,
+// byte for byte, and not the picture of the full range (--clip 0).
+TEST(RunPython, ClippedColourRangeIsThePercentileRange) {
+  test::TempDir dir;
+  std::vector<Real> pos, value;
+  for (int k = 0; k < 201; ++k) {
+    pos.insert(pos.end(), {0.05 * (k % 20), 0.05 * (k / 20)});
+    value.push_back(k == 0 ? -1e6 : k == 200 ? 1e6 : Real(k));
+  }
+  VtkSeriesWriter w(dir.path(), "frame");
+  w.write(ParticleFrame{2, value.size(), pos.data(), {{"value", value.data(), 1}}}, 0.0);
+  const auto draw = [&](const std::string& name, const std::vector<std::string>& range) {
+    std::vector<std::string> args = {w.pvd_path().string(), "--array", "value", "--out", (dir.path() / name).string()};
+    args.insert(args.end(), range.begin(), range.end());
+    EXPECT_TRUE(run_python("render_particles.py", args, true)) << name;
+    return test::file_bytes(dir.path() / name);
+  };
+  const std::string clipped = draw("clip.png", {"--clip", "0.5"});
+  ASSERT_GT(clipped.size(), 1000u);
+  EXPECT_EQ(clipped, draw("range.png", {"--range", "1", "199"}));
+  EXPECT_NE(clipped, draw("full.png", {"--clip", "0"}));
+}
+
 // One Python process for several pictures: every job runs even after a failed one, the result
 // is false then, and the failed job is named.
 TEST(RunPythonBatch, EveryJobRunsAndAFailedOneIsNamed) {
@@ -161,14 +187,10 @@ TEST(RunPythonBatch, WorkersDrawTheSamePicturesAsOneProcess) {
   };
   ASSERT_TRUE(run_python_batch(jobs_into("one_"), false, 600, 1));
   ASSERT_TRUE(run_python_batch(jobs_into("two_"), false, 600, 2));
-  const auto bytes = [](const std::filesystem::path& f) {
-    std::ifstream in(f, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
   for (const char* y : {"a", "b", "c"}) {
-    const std::string one = bytes(dir.path() / (std::string("one_") + y + ".png"));
+    const std::string one = test::file_bytes(dir.path() / (std::string("one_") + y + ".png"));
     EXPECT_GT(one.size(), 1000u) << y;
-    EXPECT_EQ(one, bytes(dir.path() / (std::string("two_") + y + ".png"))) << y;
+    EXPECT_EQ(one, test::file_bytes(dir.path() / (std::string("two_") + y + ".png"))) << y;
   }
 }
 

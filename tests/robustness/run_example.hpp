@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/file_bytes.hpp"
+
 namespace sphark::test {
 
 inline std::filesystem::path example_binary(const std::string& name) {
@@ -67,12 +69,7 @@ inline Spawned spawn(const std::filesystem::path& binary, const std::vector<std:
   return s;
 }
 
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+inline std::string slurp(const std::filesystem::path& p) { return file_bytes(p); }
 
 // The files a .pvd lists, relative to its own folder, in its order.
 inline std::vector<std::string> pvd_files(const std::filesystem::path& pvd) {
