@@ -1,11 +1,14 @@
 #pragma once
-// A node's local expansion from its far partners (multipole.hpp, add_far_field), two partners
-// at a time with SSE2 (the same formula on two lanes), an odd last one scalar. The order of
-// the sums is fixed by the partner list alone.
+// A node's local expansion from its far partners (multipole.hpp, add_far_field): four partners
+// at a time with AVX2 + FMA where the CPU has them (far_field_avx2.cpp, a short last group
+// with massless lanes), else two at a time with SSE2 and an odd last one scalar (the same
+// formula on every path). The order of the sums is fixed by the partner list alone (on a
+// given path).
 #include <cmath>
 #include <cstdint>
 
 #include "sphark/gravity/gravity_tree.hpp"
+#include "simd_dispatch.hpp"
 #include "sphark/gravity/multipole.hpp"
 
 #if defined(__SSE2__)
@@ -14,8 +17,16 @@
 
 namespace sphark::gravity_detail {
 
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+LocalExpansion far_field_of_partners_avx2(const TreeNode& A, const std::vector<TreeNode>& nodes,
+                                          const std::uint32_t* partner, std::uint32_t count);
+#endif
+
 inline LocalExpansion far_field_of_partners(const TreeNode& A, const std::vector<TreeNode>& nodes,
                                             const std::uint32_t* partner, std::uint32_t count) {
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+  if (cpu_has_avx2_fma()) return far_field_of_partners_avx2(A, nodes, partner, count);
+#endif
   LocalExpansion L;
   std::uint32_t k = 0;
 #if defined(__SSE2__)

@@ -20,9 +20,7 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__GNUC__) && defined(__x86_64__)
-#define SPHARK_GRAVITY_HAVE_AVX2 1  // add_newtonian_run_avx2 (near_field_avx2.cpp), chosen at run time
-#endif
+#include "simd_dispatch.hpp"
 
 namespace sphark::gravity_detail {
 
@@ -69,10 +67,6 @@ inline std::uint32_t list_inside(unsigned lanes, std::uint32_t b, std::uint32_t 
 }
 
 #if defined(SPHARK_GRAVITY_HAVE_AVX2)
-// True if the AVX2 loops are in use: the CPU has AVX2 and FMA, and neither the environment
-// (SPHARK_GRAVITY_SIMD=sse2, read once) nor use_avx2(false) turned them off.
-bool cpu_has_avx2_fma();
-bool use_avx2(bool on);  // returns whether they are on now
 std::uint32_t add_newtonian_runs_avx2(const ParticleArrays& p, const ParticleRun* runs, std::uint32_t n_newtonian,
                                       std::uint32_t n_runs, const Real xa[3], Real reach_a, Real support,
                                       std::uint32_t self, NewtonianSums& s, std::uint32_t* inside);
@@ -175,7 +169,7 @@ inline PairGravity2 one_side(__m128d r, __m128d inv_r, __m128d h, __m128d h_inv)
 #endif
 
 // Adds the softened pairs of a with inside[0 .. n) to s (as add_newtonian_run: sum m f_ab x_ab
-// and sum m phi_ab).
+// and sum m phi_ab). inside[n .. n + 4) must be readable (the AVX2 loop loads four at a time).
 template <class K>
 inline void add_softened_list(const ParticleArrays& p, const std::uint32_t* inside, std::uint32_t n, const Real xa[3],
                               Real ha, Real ha_inv, NewtonianSums& s) {

@@ -1,0 +1,16 @@
+#pragma once
+// The run-time choice of the tree's vector loops: on x86-64 with GCC, AVX2 + FMA versions
+// (near_field_avx2.cpp, softened_avx2.cpp, far_field_avx2.cpp) are compiled with a target
+// attribute and used when the CPU has them; else SSE2 (the x86-64 baseline) or scalar code.
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SPHARK_GRAVITY_HAVE_AVX2 1
+#endif
+
+#if defined(SPHARK_GRAVITY_HAVE_AVX2)
+namespace sphark::gravity_detail {
+// True if the AVX2 loops are in use: the CPU has AVX2 and FMA, and neither the environment
+// (SPHARK_GRAVITY_SIMD=sse2, read once) nor use_avx2(false) turned them off.
+bool cpu_has_avx2_fma();
+bool use_avx2(bool on);  // returns whether they are on now
+}  // namespace sphark::gravity_detail
+#endif
