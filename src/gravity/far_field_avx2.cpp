@@ -13,13 +13,6 @@
 
 namespace sphark::gravity_detail {
 
-namespace {
-__attribute__((target("avx2,fma"))) inline Real lane_sum4(__m256d v) {
-  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1), s = _mm_add_pd(lo, hi);
-  return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
-}
-}  // namespace
-
 __attribute__((target("avx2,fma"), flatten)) LocalExpansion far_field_of_partners_avx2(
     const TreeNode& A, const std::vector<TreeNode>& nodes, const std::uint32_t* partner, std::uint32_t count) {
   LocalExpansionT<__m256d> L4;
@@ -41,10 +34,10 @@ __attribute__((target("avx2,fma"), flatten)) LocalExpansion far_field_of_partner
     add_far_field(L4, R, ir, mass, quad);
   }
   LocalExpansion L;
-  L.c0 = lane_sum4(L4.c0);
-  for (int c = 0; c < 3; ++c) L.c1[c] = lane_sum4(L4.c1[c]);
-  for (int c = 0; c < 6; ++c) L.c2[c] = lane_sum4(L4.c2[c]);
-  for (int c = 0; c < 10; ++c) L.c3[c] = lane_sum4(L4.c3[c]);
+  L.c0 = lane_sum(L4.c0);
+  for (int c = 0; c < 3; ++c) L.c1[c] = lane_sum(L4.c1[c]);
+  for (int c = 0; c < 6; ++c) L.c2[c] = lane_sum(L4.c2[c]);
+  for (int c = 0; c < 10; ++c) L.c3[c] = lane_sum(L4.c3[c]);
   return L;
 }
 

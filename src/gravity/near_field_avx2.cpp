@@ -40,10 +40,6 @@ __attribute__((target("avx2,fma"))) inline __m256d inverse_sqrt(__m256d r2) {
   return _mm256_div_pd(_mm256_set1_pd(1), _mm256_sqrt_pd(r2));
 }
 
-__attribute__((target("avx2,fma"))) inline Real lane_sum(__m256d v) {
-  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1), s = _mm_add_pd(lo, hi);
-  return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
-}
 }  // namespace
 
 // Four pairs b .. b+3 into acc (fx, fy, fz, pot). Masked: pairs inside a softening reach left

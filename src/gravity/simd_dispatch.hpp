@@ -7,10 +7,20 @@
 #endif
 
 #if defined(SPHARK_GRAVITY_HAVE_AVX2)
+#include <immintrin.h>
+
+#include "sphark/core/types.hpp"
+
 namespace sphark::gravity_detail {
 // True if the AVX2 loops are in use: the CPU has AVX2 and FMA, and neither the environment
 // (SPHARK_GRAVITY_SIMD=sse2, read once) nor use_avx2(false) turned them off.
 bool cpu_has_avx2_fma();
 bool use_avx2(bool on);  // returns whether they are on now
+
+// The sum of the four lanes (the AVX2 loops' final reductions).
+__attribute__((target("avx2,fma"))) inline Real lane_sum(__m256d v) {
+  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1), s = _mm_add_pd(lo, hi);
+  return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
+}
 }  // namespace sphark::gravity_detail
 #endif

@@ -55,11 +55,6 @@ __attribute__((target("avx2,fma"))) inline Pair4 one_side4(__m256d r, __m256d in
   return {_mm256_blendv_pd(inside_f, ir3, out), _mm256_blendv_pd(inside_v, _mm256_sub_pd(_mm256_setzero_pd(), inv_r), out)};
 }
 
-__attribute__((target("avx2,fma"))) inline Real lane_sum(__m256d v) {
-  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1), s = _mm_add_pd(lo, hi);
-  return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
-}
-
 template <class K>
 __attribute__((target("avx2,fma"))) void softened_list_avx2(const ParticleArrays& p, const std::uint32_t* inside,
                                                             std::uint32_t n, const Real xa[3], Real ha, Real ha_inv,
