@@ -1,8 +1,10 @@
 // The tree's Newtonian near-field kernel alone (f += m (x_a - x_b) / r^3, p += m / r over 800
-// particles in L1, four lanes, AVX2 + FMA), with three ways to get 1/r:
+// particles in L1, four lanes, AVX2 + FMA), with four ways to get 1/r:
 //   sqrt_div      1 / sqrt(r^2), the four-lane square root and divide (what the tree uses);
 //   newton3       the single-precision estimate and three double Newton steps (used before);
-//   float_newton_halley  a float Newton step, then one third-order double step.
+//   float_newton_halley  a float Newton step, then one third-order double step;
+//   alternating_sqrt_div_newton3  sqrt_div and newton3 on alternate vectors (faster, not used:
+//                 a pair would get different bits from its two sides).
 // Counter: ns_per_pair (times the clock in GHz: cycles per pair).
 //   build/bin/bench_gravity_inverse_sqrt
 #include <benchmark/benchmark.h>
@@ -36,8 +38,9 @@ __attribute__((target("avx2,fma"))) inline __m256d inverse_r(__m256d r2) {
 }
 
 template <Method M>
-__attribute__((target("avx2,fma"))) inline void step(const double* x, const double* y, const double* z, const double* m,
-                                                     int b, __m256d X, __m256d Y, __m256d Z, __m256d acc[4]) {
+__attribute__((target("avx2,fma"))) inline void step(const double* x, const double* y, const double* z,
+                                                     const double* m, int b, __m256d X, __m256d Y, __m256d Z,
+                                                     __m256d acc[4]) {
     const __m256d dx = _mm256_sub_pd(X, _mm256_loadu_pd(x + b)), dy = _mm256_sub_pd(Y, _mm256_loadu_pd(y + b));
     const __m256d dz = _mm256_sub_pd(Z, _mm256_loadu_pd(z + b));
     const __m256d inv_r = inverse_r<M>(_mm256_fmadd_pd(dx, dx, _mm256_fmadd_pd(dy, dy, _mm256_mul_pd(dz, dz))));

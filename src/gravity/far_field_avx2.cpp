@@ -20,8 +20,7 @@ __attribute__((target("avx2,fma"), flatten)) LocalExpansion far_field_of_partner
     const std::uint32_t left = count - k;
     const TreeNode &B0 = nodes[partner[k]], &B1 = nodes[partner[left > 1 ? k + 1 : k]];
     const TreeNode &B2 = nodes[partner[left > 2 ? k + 2 : k]], &B3 = nodes[partner[left > 3 ? k + 3 : k]];
-    const __m256d used = _mm256_castsi256_pd(
-        _mm256_cmpgt_epi64(_mm256_set1_epi64x(static_cast<long long>(left)), _mm256_set_epi64x(3, 2, 1, 0)));
+    const __m256d used = _mm256_castsi256_pd(first_lanes_mask(static_cast<long long>(left)));
     __m256d R[3], quad[6];
     for (int c = 0; c < 3; ++c)
       R[c] = _mm256_blendv_pd(_mm256_set1_pd(c == 0 ? 1.0 : 0.0),

@@ -51,7 +51,7 @@ __attribute__((target("avx2,fma"))) inline void newtonian_step_avx2(const Partic
                                                                     Real support, std::uint32_t self, __m256d acc[4],
                                                                     std::uint32_t* inside, std::uint32_t& n_inside) {
   const __m256d one = _mm256_set1_pd(1);
-  const __m256i lanes = _mm256_cmpgt_epi64(_mm256_set1_epi64x(valid), _mm256_set_epi64x(3, 2, 1, 0));
+  const __m256i lanes = first_lanes_mask(valid);
   const auto load = [&](const Real* v) __attribute__((target("avx2,fma"))) {
     return Tail ? _mm256_maskload_pd(v + b, lanes) : _mm256_loadu_pd(v + b);
   };

@@ -17,6 +17,11 @@ namespace sphark::gravity_detail {
 bool cpu_has_avx2_fma();
 bool use_avx2(bool on);  // returns whether they are on now
 
+// All bits set in lanes 0 .. n-1 of four (n may exceed 4: all lanes), clear in the others.
+__attribute__((target("avx2,fma"))) inline __m256i first_lanes_mask(long long n) {
+  return _mm256_cmpgt_epi64(_mm256_set1_epi64x(n), _mm256_set_epi64x(3, 2, 1, 0));
+}
+
 // The sum of the four lanes (the AVX2 loops' final reductions).
 __attribute__((target("avx2,fma"))) inline Real lane_sum(__m256d v) {
   const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1), s = _mm_add_pd(lo, hi);

@@ -69,8 +69,7 @@ __attribute__((target("avx2,fma"))) void softened_list_avx2(const ParticleArrays
     const __m128i past = _mm_cmpgt_epi32(_mm_set_epi32(3, 2, 1, 0), _mm_set1_epi32(static_cast<int>(n - k - 1)));
     const __m128i id = _mm_blendv_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(inside + k)),
                                        _mm_set1_epi32(static_cast<std::int32_t>(inside[k])), past);
-    const __m256d valid = _mm256_castsi256_pd(
-        _mm256_cmpgt_epi64(_mm256_set1_epi64x(static_cast<long long>(n - k)), _mm256_set_epi64x(3, 2, 1, 0)));
+    const __m256d valid = _mm256_castsi256_pd(first_lanes_mask(static_cast<long long>(n - k)));
     const __m256d dx = _mm256_sub_pd(X, _mm256_i32gather_pd(p.x, id, 8)), dy = _mm256_sub_pd(Y, _mm256_i32gather_pd(p.y, id, 8));
     const __m256d dz = _mm256_sub_pd(Z, _mm256_i32gather_pd(p.z, id, 8));
     const __m256d r2 = _mm256_fmadd_pd(dx, dx, _mm256_fmadd_pd(dy, dy, _mm256_mul_pd(dz, dz)));
