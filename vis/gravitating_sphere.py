@@ -2,7 +2,8 @@
 r"""Charts of a gravitating-sphere run (examples/gravitating_sphere):
   energies.png          kinetic, thermal, potential and total energy against t
   lagrangian_radii.png  the 10/50/90 % Lagrangian radii against the exact free fall (uniform sphere)
-  slice.png             the particles with |z| < 0.05 R of the last frame, coloured by log10 density
+  slice.png             the gas particles with |z| < 0.05 R of the last frame, coloured by log10
+                        density, and every sink (a red star, its mass in the legend)
   gravitating_sphere.py --dir out/gravitating_sphere/uniform --sphere uniform
 """
 import argparse
@@ -13,6 +14,7 @@ import os
 import sys
 
 import matplotlib
+import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from atomic_save import save_figure  # noqa: E402
@@ -64,9 +66,16 @@ def density_slice(out):
     poly = r.GetOutput()
     x = vtk_to_numpy(poly.GetPoints().GetData())
     rho = vtk_to_numpy(poly.GetPointData().GetArray("density"))
-    keep = abs(x[:, 2]) < 0.05
+    species = poly.GetPointData().GetArray("species")  # 0 gas, 1 sink (runs with --sinks on)
+    sink = vtk_to_numpy(species) == 1 if species is not None else np.zeros(len(x), dtype=bool)
+    keep = (abs(x[:, 2]) < 0.05) & ~sink
     fig, ax = plt.subplots(figsize=(5.6, 5))
     sc = ax.scatter(x[keep, 0], x[keep, 1], c=[math.log10(v) for v in rho[keep]], s=2, cmap="viridis")
+    if sink.any():  # every sink, whatever its z: a point mass, not part of the density field
+        mass = vtk_to_numpy(poly.GetPointData().GetArray("mass"))[sink]
+        ax.scatter(x[sink, 0], x[sink, 1], marker="*", s=160, c="red", edgecolors="k",
+                   label=f"sink{'s' if sink.sum() > 1 else ''}: {', '.join(f'{m:.3g}' for m in mass)} M")
+        ax.legend(loc="upper right", fontsize=8)
     fig.colorbar(sc, ax=ax, label="log10 density")
     ax.set_aspect("equal")
     ax.set_title(f"slice |z| < 0.05, {os.path.basename(frames[-1])}")

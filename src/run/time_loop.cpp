@@ -122,6 +122,7 @@ class TimeLoop {
   std::optional<ResumableVtkSeries> vtk_;
   std::optional<ParallelVtkSeriesWriter> pvtk_;  // distributed runs
   Real sample_ = 0, next_frame_ = 0, next_checkpoint_;
+  bool state_since_frame_ = false;  // a row was recorded after the last frame (finish() writes one)
   CountBase base_;
   std::vector<std::pair<std::string, Real*>> binds_;  // the checkpoint's scalars
   std::vector<Real> y_;
@@ -194,6 +195,7 @@ void TimeLoop::bound_steps(OdeSystem& system) {
 void TimeLoop::write_frame(Real time) {
   const ParticleFrame f = hooks_.frame(time, y_.data());
   res_.last_frame = pvtk_ ? pvtk_->write(f, time) : vtk_->write(f, time);
+  state_since_frame_ = false;
 }
 
 // The signal a stop was requested by (0: none); distributed: of any rank, on every rank.
@@ -248,6 +250,8 @@ void TimeLoop::record(Real time) {
     write_frame(time);
     flush_csv();
     next_frame_ += frame_every_;
+  } else {
+    state_since_frame_ = true;
   }
   sample_ += 1;
 }
@@ -331,12 +335,14 @@ TimeLoopResult TimeLoop::run() {
   return std::move(res_);
 }
 
-// After the loop: the CSV (and, with checkpoints, one at the end) of a run that ended well, and
-// the result's totals.
+// After the loop: the CSV, a frame of the final state when the frame grid did not end on it
+// (t_end not a multiple of the frame interval, or a run that ended early), and with checkpoints
+// one at the end, of a run that ended well; and the result's totals.
 void TimeLoop::finish() {
   if (res_.ok()) {
     {
       ScopedPhase phase(Phase::Output);
+      if (frames() && state_since_frame_) write_frame(t_);
       flush_csv();
     }
     if (s_.checkpoint_every > 0) save(t_);

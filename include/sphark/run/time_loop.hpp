@@ -56,7 +56,7 @@ struct TimeLoopSettings {
   std::vector<std::string> columns;     // its header
   std::filesystem::path frames_dir;     // "" : no VTK frames
   std::string frames_basename;          // <frames_dir>/<basename>_NNNNN.vtp + <basename>.pvd
-  Real frame_every = 0;                 // 0: first and last only
+  Real frame_every = 0;                 // 0: first and last only; the final state is always a frame
   std::filesystem::path checkpoint;     // written on failure / signal, and every checkpoint_every
   Real checkpoint_every = 0;            // > 0: also at the end
   const Checkpoint* restart = nullptr;  // continue from this checkpoint (checked by the caller)
