@@ -49,7 +49,7 @@ struct CloudCollapseParams {
   Real alpha_visc = 1;                // artificial viscosity (no switch)
   Real alpha_b = 0.1;                 // artificial resistivity of cleaning+resistivity (constant)
   Real sigma = 1;                     // cleaning damping 1/tau = sigma c_h / h (Phantom psidecayfac)
-  Real overclean = 1;                 // c_h = overclean x fast speed (Phantom overcleanfac)
+  Real overclean = 4;                 // c_h = overclean x fast speed (Phantom overcleanfac; 4: measured, docs/cloud_collapse.md)
   // one global c_h (the largest fast speed); true: each particle's (Tricco, Price & Bate 2016),
   // state psi / c_h — measured worse here (docs/cloud_collapse.md)
   bool local_ch = false;
