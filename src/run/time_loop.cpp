@@ -107,6 +107,7 @@ class TimeLoop {
   void record(Real time);
   void stop(int signal);
   void fail();
+  void fail_in_hook(const std::exception& e);
   void end_at_root();
   void checkpoint_if_due();
   void finish();
@@ -274,6 +275,22 @@ void TimeLoop::fail() {
   save(t_);
 }
 
+// An exception from a hook (diagnostics, frame, after_step) or the stepper's set-up, in a serial
+// run: the run fails like a stepper failure, keeping what it has — the CSV rows so far and a
+// checkpoint of the state reached (t_, y_: the last state the stepper accepted; the hook may be
+// what failed on it, so no frame is attempted).
+void TimeLoop::fail_in_hook(const std::exception& e) {
+  res_.status = TimeLoopStatus::Failed;
+  res_.failure = e.what();
+  try {
+    if (y_.size() != layout_.size()) throw std::runtime_error("the state does not fit its layout");  // mid-resize
+    save(t_);
+  } catch (const std::exception& again) {  // the checkpoint needs the system too: keep the rows at least
+    res_.failure += std::string("; no checkpoint: ") + again.what();
+    flush_csv();
+  }
+}
+
 void TimeLoop::end_at_root() {
   const std::filesystem::path before = res_.last_frame;
   record(t_);  // the event ends the run at its root time, with a frame of that state
@@ -303,32 +320,39 @@ TimeLoopResult TimeLoop::run() {
   const auto report_progress = [&] {
     if (!s_.quiet) progress.update(t_, stats().steps, stepper_->stats().last_dt);
   };
-  if (!s_.restart) record(0.0);
-  if (hooks_.finished && hooks_.finished(t_)) res_.status = TimeLoopStatus::EndedEarly;
-  while (res_.status == TimeLoopStatus::Reached && t_ < t_end_ * (1 - 1e-12)) {
-    if (const int sig = stop_signal()) {  // SIGINT/SIGTERM: checkpoint the last recorded state
-      stop(sig);
-      break;
-    }
-    const Real t_out = std::min(t_end_, sample_ * s_.sample_every);
-    const AdvanceStatus st = advance_to(*stepper_, hooks_, t_out, y_, t_, layout_, report_progress);
-    if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
-      stop(stop_signal());
-      break;
-    }
-    if (st == AdvanceStatus::Failed) {
-      fail();
-      break;
-    }
-    if (st == AdvanceStatus::RootFound) {
-      if (!hooks_.root || !hooks_.root(t_, stepper_->roots_found())) continue;
-      end_at_root();
-      break;
-    }
-    record(t_);
+  try {
+    if (!s_.restart) record(0.0);
     if (hooks_.finished && hooks_.finished(t_)) res_.status = TimeLoopStatus::EndedEarly;
-    checkpoint_if_due();
-    report_progress();
+    while (res_.status == TimeLoopStatus::Reached && t_ < t_end_ * (1 - 1e-12)) {
+      if (const int sig = stop_signal()) {  // SIGINT/SIGTERM: checkpoint the last recorded state
+        stop(sig);
+        break;
+      }
+      const Real t_out = std::min(t_end_, sample_ * s_.sample_every);
+      const AdvanceStatus st = advance_to(*stepper_, hooks_, t_out, y_, t_, layout_, report_progress);
+      if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
+        stop(stop_signal());
+        break;
+      }
+      if (st == AdvanceStatus::Failed) {
+        fail();
+        break;
+      }
+      if (st == AdvanceStatus::RootFound) {
+        if (!hooks_.root || !hooks_.root(t_, stepper_->roots_found())) continue;
+        end_at_root();
+        break;
+      }
+      record(t_);
+      if (hooks_.finished && hooks_.finished(t_)) res_.status = TimeLoopStatus::EndedEarly;
+      checkpoint_if_due();
+      report_progress();
+    }
+  } catch (const std::exception& e) {
+    // Distributed: one rank's exception cannot be answered here (the others may wait in a
+    // collective); run_scene aborts every rank.
+    if (distributed()) throw;
+    fail_in_hook(e);
   }
   if (!s_.quiet) progress.finish();
   finish();

@@ -1,12 +1,16 @@
-// The time loop writes a VTK frame of the state it ends on (run/time_loop.cpp, finish()): when
-// t_end is not a multiple of the frame interval, and when a hook ends the run early between frames
-// (a sink taking the gas, say). On a grid that ends on t_end it adds nothing. One particle moving
-// at unit speed, x(t) = t, so each frame's position is its time.
+// How the time loop ends a run (run/time_loop.cpp). It writes a VTK frame of the state it ends on
+// (finish()): when t_end is not a multiple of the frame interval, and when a hook ends the run
+// early between frames (a sink taking the gas, say); on a grid that ends on t_end it adds nothing.
+// A hook that throws (a frame whose density solve fails, say) fails the run without losing what
+// it has: the CSV rows so far and a checkpoint of the state reached (fail_in_hook()). One particle
+// moving at unit speed, x(t) = t.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
+#include "sphark/run/checkpoint.hpp"
 #include "sphark/run/time_loop.hpp"
 #include "../support/temp_dir.hpp"
 
@@ -46,10 +50,16 @@ std::vector<double> frame_times(const std::filesystem::path& dir) {
   return t;
 }
 
+struct Ending {
+  TimeLoopResult result;
+  std::vector<double> frame_times;
+  std::string csv;  // the diagnostics file as written
+};
+
 // Runs the drift to t_end with samples every 0.1 and frames every frame_every; end_after: a
-// `finished` hook that ends the run at the first sample at or after that time (0: none).
-std::vector<double> run(Real t_end, Real frame_every, Real end_after = 0) {
-  TempDir dir;
+// `finished` hook that ends the run at the first sample at or after that time (0: none);
+// throw_after: the frame hook throws from that time on (0: never).
+Ending run_to_end(const TempDir& dir, Real t_end, Real frame_every, Real end_after = 0, Real throw_after = 0) {
   Drift sys;
   std::vector<Real> y0 = {0, 1}, x(1);
   StepperOptions o;
@@ -64,17 +74,29 @@ std::vector<double> run(Real t_end, Real frame_every, Real end_after = 0) {
   s.frames_basename = "drift";
   s.diagnostics_csv = dir.path() / "d.csv";
   s.columns = {"t"};
+  s.checkpoint = dir.path() / "c.bin";
   s.quiet = true;
   TimeLoopHooks h;
   h.diagnostics = [](Real t, const Real*, const StepperStats&) { return std::vector<Real>{t}; };
-  h.frame = [&](Real, const Real* y) {
+  h.frame = [&](Real t, const Real* y) {
+    if (throw_after > 0 && t >= throw_after - 1e-12) throw std::runtime_error("frame: density solve failed");
     x[0] = y[0];
     return ParticleFrame{1, 1, x.data(), {}, nullptr};
   };
   if (end_after > 0) h.finished = [&](Real t) { return t >= end_after - 1e-12; };
-  const TimeLoopResult r = run_time_loop(sys, sys.layout(), o, y0, s, h);
-  EXPECT_TRUE(r.ok()) << r.failure;
-  return frame_times(dir.path());
+  Ending e{run_time_loop(sys, sys.layout(), o, y0, s, h), frame_times(dir.path()), ""};
+  std::ifstream in(s.diagnostics_csv);
+  std::stringstream text;
+  text << in.rdbuf();
+  e.csv = text.str();
+  return e;
+}
+
+std::vector<double> run(Real t_end, Real frame_every, Real end_after = 0) {
+  TempDir dir;
+  const Ending e = run_to_end(dir, t_end, frame_every, end_after);
+  EXPECT_TRUE(e.result.ok()) << e.result.failure;
+  return e.frame_times;
 }
 }  // namespace
 
@@ -96,4 +118,19 @@ TEST(FinalFrame, WrittenWhenAHookEndsTheRunBetweenFrames) {
   ASSERT_EQ(t.size(), 3u);
   EXPECT_NEAR(t[1], 0.5, 1e-12);
   EXPECT_NEAR(t[2], 0.7, 1e-12);
+}
+
+TEST(HookFailure, KeepsTheRowsAndCheckpointsTheStateReached) {
+  TempDir dir;
+  const Ending e = run_to_end(dir, 2.0, 0.5, 0, 1.0);  // frames at 0 and 0.5; the one at 1.0 throws
+  EXPECT_EQ(e.result.status, TimeLoopStatus::Failed);
+  EXPECT_NE(e.result.failure.find("density solve failed"), std::string::npos) << e.result.failure;
+  EXPECT_NEAR(e.result.t_reached, 1.0, 1e-12);
+  EXPECT_EQ(e.frame_times.size(), 2u);
+  // every row to t = 1.0 is in the file (the rows after the last frame were held in memory)
+  EXPECT_EQ(std::count(e.csv.begin(), e.csv.end(), '\n'), 1 + 11) << e.csv;
+  ASSERT_EQ(e.result.checkpoint, dir.path() / "c.bin");
+  const Checkpoint c = load_checkpoint(e.result.checkpoint);
+  EXPECT_NEAR(c.t, 1.0, 1e-12);
+  EXPECT_NEAR(c.y[0], 1.0, 1e-12);  // x(t) = t
 }
