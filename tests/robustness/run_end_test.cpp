@@ -7,14 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
+#include "sphark/io/paraview_state.hpp"
 #include "sphark/run/checkpoint.hpp"
 #include "sphark/run/time_loop.hpp"
+#include "../support/file_bytes.hpp"
 #include "../support/temp_dir.hpp"
 
 using namespace sphark;
+using sphark::test::file_bytes;
 using sphark::test::TempDir;
 
 namespace {
@@ -39,14 +40,8 @@ class Drift final : public OdeSystem {  // x' = v, v' = 0
 
 // The times of the frames listed in <dir>/drift.pvd, in order.
 std::vector<double> frame_times(const std::filesystem::path& dir) {
-  std::ifstream in(dir / "drift.pvd");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string s = text.str();
   std::vector<double> t;
-  const std::string key = "timestep=\"";
-  for (std::size_t at = s.find(key); at != std::string::npos; at = s.find(key, at + 1))
-    t.push_back(std::stod(s.substr(at + key.size())));
+  for (const auto& [time, file] : read_pvd(dir / "drift.pvd")) t.push_back(time);
   return t;
 }
 
@@ -84,12 +79,8 @@ Ending run_to_end(const TempDir& dir, Real t_end, Real frame_every, Real end_aft
     return ParticleFrame{1, 1, x.data(), {}, nullptr};
   };
   if (end_after > 0) h.finished = [&](Real t) { return t >= end_after - 1e-12; };
-  Ending e{run_time_loop(sys, sys.layout(), o, y0, s, h), frame_times(dir.path()), ""};
-  std::ifstream in(s.diagnostics_csv);
-  std::stringstream text;
-  text << in.rdbuf();
-  e.csv = text.str();
-  return e;
+  const TimeLoopResult r = run_time_loop(sys, sys.layout(), o, y0, s, h);
+  return {r, frame_times(dir.path()), file_bytes(s.diagnostics_csv)};
 }
 
 std::vector<double> run(Real t_end, Real frame_every, Real end_after = 0) {
