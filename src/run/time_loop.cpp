@@ -1,3 +1,5 @@
+// The time loop (see sphark/run/time_loop.hpp): its run, records and ends; the checkpoint half
+// is time_loop_checkpoint.cpp.
 #include "sphark/run/time_loop.hpp"
 
 #include <algorithm>
@@ -12,11 +14,11 @@
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/progress.hpp"
-#include "sphark/io/pvtp_series.hpp"
-#include "sphark/run/run_outputs.hpp"
 #include "sphark/run/signals.hpp"
+#include "time_loop_impl.hpp"
 
 namespace sphark {
+namespace detail {
 namespace {
 
 // t_end on the sampling grid when it is a multiple of the grid step (to 1e-9), so that a run to
@@ -25,35 +27,6 @@ Real snap_to_grid(Real t_end, Real every) {
   const Real k = std::round(t_end / every);
   return k >= 1 && std::abs(t_end / every - k) < 1e-9 ? k * every : t_end;
 }
-
-// Counts of the stepper(s) before a restart, kept in the checkpoint under these names.
-struct CountBase {
-  Real steps = 0, attempts = 0, rhs_evals = 0, rhs_evals_implicit = 0, error_test_failures = 0,
-       nonlinear_failures = 0, rhs_recoveries = 0, linear_solves = 0, particle_evals = 0;
-  std::vector<std::pair<const char*, Real*>> bind() {
-    return {{"steps", &steps}, {"attempts", &attempts}, {"rhs_evals", &rhs_evals},
-            {"rhs_evals_implicit", &rhs_evals_implicit}, {"error_test_failures", &error_test_failures},
-            {"nonlinear_failures", &nonlinear_failures}, {"rhs_recoveries", &rhs_recoveries},
-            {"linear_solves", &linear_solves}, {"particle_evals", &particle_evals}};
-  }
-  StepperStats total(StepperStats st) const {
-    st.steps += static_cast<long>(steps);
-    st.attempts += static_cast<long>(attempts);
-    st.rhs_evals += static_cast<long>(rhs_evals);
-    st.rhs_evals_implicit += static_cast<long>(rhs_evals_implicit);
-    st.error_test_failures += static_cast<long>(error_test_failures);
-    st.nonlinear_failures += static_cast<long>(nonlinear_failures);
-    st.rhs_recoveries += static_cast<long>(rhs_recoveries);
-    st.linear_solves += static_cast<long>(linear_solves);
-    st.particle_evals += static_cast<long>(particle_evals);
-    return st;
-  }
-  void set(const StepperStats& st) {
-    steps = st.steps, attempts = st.attempts, rhs_evals = st.rhs_evals, rhs_evals_implicit = st.rhs_evals_implicit;
-    error_test_failures = st.error_test_failures, nonlinear_failures = st.nonlinear_failures;
-    rhs_recoveries = st.rhs_recoveries, linear_solves = st.linear_solves, particle_evals = st.particle_evals;
-  }
-};
 
 // Advances to t_out: in one call, or (with hooks.after_step) step by step, resizing the state and
 // the stepper when the hook asks for it; `progress` is called after each step.
@@ -74,63 +47,7 @@ AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_ou
   }
 }
 
-// The first index k of the grid k x every after t (a checkpoint time t on the grid gives the next).
-Real grid_index_after(Real t, Real every) { return std::floor(t / every * (1 + 1e-12)) + 1; }
-
-// One run of the loop: its outputs (diagnostics CSV, VTK series, checkpoints), the state, the
-// stepper, the grid position and the counts before a restart.
-class TimeLoop {
- public:
-  TimeLoop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
-           const TimeLoopSettings& s, const TimeLoopHooks& hooks);
-  TimeLoop(const TimeLoop&) = delete;  // binds_ points into this object
-  TimeLoop& operator=(const TimeLoop&) = delete;
-
-  // Integrates to t_end, a stop, a failure or an early end; the result without its wall time.
-  TimeLoopResult run();
-
- private:
-  void bind_checkpoint_scalars();
-  void restore(const Checkpoint& c);
-  void bound_steps(OdeSystem& system);
-  StepperStats stats() const { return base_.total(stepper_->stats()); }
-  void save(Real time);
-  // Distributed runs (StepperOptions::communicator with MPI): every rank writes its piece of a
-  // frame (parallel VTK), rank 0 the CSV; the stop poll is collective; no checkpoints yet.
-  bool distributed() const { return opts_.communicator.distributed(); }
-  bool frames() const { return vtk_ || pvtk_; }
-  void write_frame(Real time);
-  void flush_csv() const {
-    if (opts_.communicator.rank() == 0) csv_.flush();
-  }
-  int stop_signal() const;
-  void record(Real time);
-  void stop(int signal);
-  void fail();
-  void fail_in_hook(const std::exception& e);
-  void end_at_root();
-  void checkpoint_if_due();
-  void finish();
-
-  OdeSystem& system_;
-  const TimeLoopSettings& s_;
-  const TimeLoopHooks& hooks_;
-  StepperOptions opts_;
-  TimeLoopResult res_;
-  const Real t_end_;
-  const Real frame_every_;
-  AtomicCsv csv_;
-  std::optional<ResumableVtkSeries> vtk_;
-  std::optional<ParallelVtkSeriesWriter> pvtk_;  // distributed runs
-  Real sample_ = 0, next_frame_ = 0, next_checkpoint_;
-  bool state_since_frame_ = false;  // a row was recorded after the last frame (finish() writes one)
-  CountBase base_;
-  std::vector<std::pair<std::string, Real*>> binds_;  // the checkpoint's scalars
-  std::vector<Real> y_;
-  StateLayout layout_;  // changes when after_step resizes the state
-  Real t_ = 0;
-  std::unique_ptr<Stepper> stepper_;
-};
+}  // namespace
 
 TimeLoop::TimeLoop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
                    const TimeLoopSettings& s, const TimeLoopHooks& hooks)
@@ -147,37 +64,6 @@ TimeLoop::TimeLoop(OdeSystem& system, const StateLayout& initial_layout, Stepper
   bound_steps(system);
   if (s.restart) system.resume(s.restart->system_data);  // after bound_steps: its evaluation moves the starts
   stepper_ = make_stepper(system, opts_, t_, y_.data());
-}
-
-void TimeLoop::bind_checkpoint_scalars() {
-  binds_ = {{"sample", &sample_}, {"next_frame", &next_frame_}, {"next_checkpoint", &next_checkpoint_}};
-  for (auto& [name, ptr] : base_.bind()) binds_.emplace_back(name, ptr);
-  binds_.insert(binds_.end(), hooks_.state.begin(), hooks_.state.end());
-}
-
-void TimeLoop::restore(const Checkpoint& c) {
-  if (hooks_.restart_layout) layout_ = hooks_.restart_layout(c);
-  if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
-  y_ = c.y;
-  t_ = c.t;
-  for (auto& [name, ptr] : binds_) {
-    // particle_evals (issue #17) is newer than the other counts: a checkpoint without it counts
-    // from the restart on.
-    const bool optional = name == "particle_evals";
-    *ptr = !optional || c.has_scalar(name) ? c.scalar(name) : 0;
-  }
-  // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
-  // new grid from the checkpoint time on.
-  if (c.scalar("sample_every") != s_.sample_every || !(sample_ * s_.sample_every > t_))  // (the latter: a corrupt index)
-    sample_ = grid_index_after(t_, s_.sample_every);
-  if (c.scalar("frame_every") != frame_every_) next_frame_ = grid_index_after(t_, frame_every_) * frame_every_;
-  if (c.scalar("checkpoint_every") != s_.checkpoint_every && s_.checkpoint_every > 0)
-    next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
-  csv_.restore(c.text("diagnostics.csv"));
-  if (vtk_)  // frames_dir: absent in checkpoints of before 2026-12-02
-    vtk_->restore(c.text("frames"), c.has_text("frames_dir") ? std::filesystem::path(c.text("frames_dir")) : "");
-  opts_.initial_dt = c.last_dt;
-  opts_.resume_data = c.stepper_data;
 }
 
 // The stepper's limits (unless set by the caller) and the interrupt that polls for a stop signal.
@@ -203,44 +89,6 @@ void TimeLoop::write_frame(Real time) {
 int TimeLoop::stop_signal() const {
   const int mine = stop_requested();
   return distributed() ? static_cast<int>(opts_.communicator.allreduce(std::int64_t(mine), ReduceOp::Max)) : mine;
-}
-
-void TimeLoop::save(Real time) {
-  if (distributed()) {  // checkpoints of distributed runs: not yet (the options refuse them)
-    flush_csv();
-    return;
-  }
-  ScopedPhase phase(Phase::Output);
-  Checkpoint c;
-  c.program = s_.program;
-  c.argv = s_.argv;
-  c.species = describe_layout(layout_);
-  c.t = time;
-  c.last_dt = stepper_->stats().last_dt > 0 ? stepper_->stats().last_dt : opts_.initial_dt;
-  CountBase now;  // the counts so far: the restart's base
-  now.set(stats());
-  for (auto& [name, ptr] : binds_) {
-    bool counted = false;
-    for (auto& [cname, cptr] : now.bind())
-      if (name == cname) c.set_scalar(name, *cptr), counted = true;
-    if (!counted) c.set_scalar(name, *ptr);
-  }
-  c.set_scalar("sample_every", s_.sample_every);
-  c.set_scalar("frame_every", frame_every_);
-  c.set_scalar("checkpoint_every", s_.checkpoint_every);
-  c.set_text("run", s_.run);
-  for (const auto& [k, v] : s_.texts) c.set_text(k, v);
-  c.set_text("diagnostics.csv", csv_.text());
-  if (vtk_) {
-    c.set_text("frames", vtk_->text());
-    c.set_text("frames_dir", std::filesystem::absolute(s_.frames_dir).string());
-  }
-  c.y = y_;
-  c.stepper_data = stepper_->resume_data();
-  c.system_data = system_.resume_data();
-  flush_csv();
-  res_.checkpoint = s_.checkpoint;
-  save_checkpoint(s_.checkpoint, c);
 }
 
 // The diagnostics row at a grid time, and the frame when one is due.
@@ -300,17 +148,6 @@ void TimeLoop::end_at_root() {
     flush_csv();
   }
   res_.status = TimeLoopStatus::EndedEarly;
-}
-
-// A checkpoint at the first sample at or after every multiple of checkpoint_every.
-void TimeLoop::checkpoint_if_due() {
-  if (!(s_.checkpoint_every > 0 && t_ >= next_checkpoint_ - 1e-12 * t_end_)) return;
-  if ((t_ - next_checkpoint_) / s_.checkpoint_every < 1e3) {
-    while (next_checkpoint_ <= t_ + 1e-12 * t_end_) next_checkpoint_ += s_.checkpoint_every;
-  } else {  // an interval far below the sampling: one jump, not a loop per interval passed
-    next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
-  }
-  save(t_);
 }
 
 TimeLoopResult TimeLoop::run() {
@@ -376,7 +213,7 @@ void TimeLoop::finish() {
   res_.diagnostics = csv_.text();
 }
 
-}  // namespace
+}  // namespace detail
 
 TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layout, StepperOptions opts, std::vector<Real> y0,
                              const TimeLoopSettings& s, const TimeLoopHooks& hooks) {
@@ -389,7 +226,7 @@ TimeLoopResult run_time_loop(OdeSystem& system, const StateLayout& initial_layou
   install_stop_handlers();
 
   const int rank = opts.communicator.rank();
-  TimeLoop loop(system, initial_layout, std::move(opts), std::move(y0), s, hooks);
+  detail::TimeLoop loop(system, initial_layout, std::move(opts), std::move(y0), s, hooks);
   TimeLoopResult res = loop.run();
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (profile.enabled() && rank == 0) {  // distributed: rank 0's profile

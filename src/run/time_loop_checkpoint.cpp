@@ -1,0 +1,118 @@
+// The checkpoint half of the time loop (time_loop_impl.hpp): the scalars a checkpoint holds,
+// writing one, restoring a run from one, and when one is due.
+#include <filesystem>
+#include <stdexcept>
+
+#include "sphark/core/profile.hpp"
+#include "sphark/run/checkpoint.hpp"
+#include "time_loop_impl.hpp"
+
+namespace sphark::detail {
+
+std::vector<std::pair<const char*, Real*>> CountBase::bind() {
+  return {{"steps", &steps}, {"attempts", &attempts}, {"rhs_evals", &rhs_evals},
+          {"rhs_evals_implicit", &rhs_evals_implicit}, {"error_test_failures", &error_test_failures},
+          {"nonlinear_failures", &nonlinear_failures}, {"rhs_recoveries", &rhs_recoveries},
+          {"linear_solves", &linear_solves}, {"particle_evals", &particle_evals}};
+}
+
+StepperStats CountBase::total(StepperStats st) const {
+  st.steps += static_cast<long>(steps);
+  st.attempts += static_cast<long>(attempts);
+  st.rhs_evals += static_cast<long>(rhs_evals);
+  st.rhs_evals_implicit += static_cast<long>(rhs_evals_implicit);
+  st.error_test_failures += static_cast<long>(error_test_failures);
+  st.nonlinear_failures += static_cast<long>(nonlinear_failures);
+  st.rhs_recoveries += static_cast<long>(rhs_recoveries);
+  st.linear_solves += static_cast<long>(linear_solves);
+  st.particle_evals += static_cast<long>(particle_evals);
+  return st;
+}
+
+void CountBase::set(const StepperStats& st) {
+  steps = st.steps, attempts = st.attempts, rhs_evals = st.rhs_evals, rhs_evals_implicit = st.rhs_evals_implicit;
+  error_test_failures = st.error_test_failures, nonlinear_failures = st.nonlinear_failures;
+  rhs_recoveries = st.rhs_recoveries, linear_solves = st.linear_solves, particle_evals = st.particle_evals;
+}
+
+void TimeLoop::bind_checkpoint_scalars() {
+  binds_ = {{"sample", &sample_}, {"next_frame", &next_frame_}, {"next_checkpoint", &next_checkpoint_}};
+  for (auto& [name, ptr] : base_.bind()) binds_.emplace_back(name, ptr);
+  binds_.insert(binds_.end(), hooks_.state.begin(), hooks_.state.end());
+}
+
+void TimeLoop::restore(const Checkpoint& c) {
+  if (hooks_.restart_layout) layout_ = hooks_.restart_layout(c);
+  if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
+  y_ = c.y;
+  t_ = c.t;
+  for (auto& [name, ptr] : binds_) {
+    // particle_evals (issue #17) is newer than the other counts: a checkpoint without it counts
+    // from the restart on.
+    const bool optional = name == "particle_evals";
+    *ptr = !optional || c.has_scalar(name) ? c.scalar(name) : 0;
+  }
+  // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
+  // new grid from the checkpoint time on.
+  if (c.scalar("sample_every") != s_.sample_every || !(sample_ * s_.sample_every > t_))  // (the latter: a corrupt index)
+    sample_ = grid_index_after(t_, s_.sample_every);
+  if (c.scalar("frame_every") != frame_every_) next_frame_ = grid_index_after(t_, frame_every_) * frame_every_;
+  if (c.scalar("checkpoint_every") != s_.checkpoint_every && s_.checkpoint_every > 0)
+    next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
+  csv_.restore(c.text("diagnostics.csv"));
+  if (vtk_)  // frames_dir: absent in checkpoints of before 2026-12-02
+    vtk_->restore(c.text("frames"), c.has_text("frames_dir") ? std::filesystem::path(c.text("frames_dir")) : "");
+  opts_.initial_dt = c.last_dt;
+  opts_.resume_data = c.stepper_data;
+}
+
+void TimeLoop::save(Real time) {
+  if (distributed()) {  // checkpoints of distributed runs: not yet (the options refuse them)
+    flush_csv();
+    return;
+  }
+  ScopedPhase phase(Phase::Output);
+  Checkpoint c;
+  c.program = s_.program;
+  c.argv = s_.argv;
+  c.species = describe_layout(layout_);
+  c.t = time;
+  c.last_dt = stepper_->stats().last_dt > 0 ? stepper_->stats().last_dt : opts_.initial_dt;
+  CountBase now;  // the counts so far: the restart's base
+  now.set(stats());
+  for (auto& [name, ptr] : binds_) {
+    bool counted = false;
+    for (auto& [cname, cptr] : now.bind())
+      if (name == cname) c.set_scalar(name, *cptr), counted = true;
+    if (!counted) c.set_scalar(name, *ptr);
+  }
+  c.set_scalar("sample_every", s_.sample_every);
+  c.set_scalar("frame_every", frame_every_);
+  c.set_scalar("checkpoint_every", s_.checkpoint_every);
+  c.set_text("run", s_.run);
+  for (const auto& [k, v] : s_.texts) c.set_text(k, v);
+  c.set_text("diagnostics.csv", csv_.text());
+  if (vtk_) {
+    c.set_text("frames", vtk_->text());
+    c.set_text("frames_dir", std::filesystem::absolute(s_.frames_dir).string());
+  }
+  c.y = y_;
+  c.stepper_data = stepper_->resume_data();
+  c.system_data = system_.resume_data();
+  flush_csv();
+  res_.checkpoint = s_.checkpoint;
+  save_checkpoint(s_.checkpoint, c);
+}
+
+// A checkpoint at the first sample at or after every multiple of checkpoint_every.
+void TimeLoop::checkpoint_if_due() {
+  if (!(s_.checkpoint_every > 0 && t_ >= next_checkpoint_ - 1e-12 * t_end_)) return;
+  if ((t_ - next_checkpoint_) / s_.checkpoint_every < 1e3) {
+    while (next_checkpoint_ <= t_ + 1e-12 * t_end_) next_checkpoint_ += s_.checkpoint_every;
+  } else {  // an interval far below the sampling: one jump, not a loop per interval passed
+    next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
+  }
+  save(t_);
+}
+
+}  // namespace sphark::detail
