@@ -192,3 +192,31 @@ TEST(LatticeRuns, AnEventEndsTheDrivenRunAtItsRootWithAFrame) {
   EXPECT_TRUE(fs::exists(out / "single_mirror" / "lattice_00001.vtp"));
   EXPECT_TRUE(fs::exists(out / "single_mirror" / "fields_end.csv"));
 }
+
+// --cfl 0 (the default) is the case's CFL number: 0.25 for single (kept in the checkpoint's scene
+// text), 0.4 for the ensemble (its runs take the steps of --cfl 0.4, not those of 0.25).
+TEST(LatticeRuns, TheDefaultCflIsTheCases) {
+  TempDir dir;
+  const fs::path single = dir.path() / "single";
+  ASSERT_EQ(run(require_example("cylinder_lattice"),
+                kSingle + Args{"--out", single.string(), "--t-end", "0.1", "--checkpoint-every", "0.1"}, dir.path())
+                .exit_code,
+            0);
+  EXPECT_NE(load_checkpoint(single / "single_nonlinear" / "checkpoint.bin").text("scene").find("\ncfl=0.25\n"),
+            std::string::npos);
+  const auto ensemble_steps = [&](const Args& cfl) {
+    const fs::path out = dir.path() / ("ensemble" + std::to_string(cfl.size()) + (cfl.empty() ? "" : cfl[1]));
+    const Finished f = run(require_example("cylinder_lattice"),
+                           Args{"--case", "ensemble", "--particles", "100", "--t-end", "0.2", "--seeds", "1", "--v0-list",
+                                "0.5", "--map", "nonlinear", "--threads", "1", "--no-render", "--out", out.string()} +
+                               cfl,
+                           dir.path());
+    EXPECT_EQ(f.exit_code, 0) << f.err;
+    return csv_column(slurp(out / "ensemble_runs.csv"), "steps");
+  };
+  const std::vector<Real> by_default = ensemble_steps({}), at_04 = ensemble_steps({"--cfl", "0.4"}),
+                          at_025 = ensemble_steps({"--cfl", "0.25"});
+  ASSERT_EQ(by_default.size(), 1u);
+  EXPECT_EQ(by_default, at_04);
+  EXPECT_GT(at_025[0], 1.5 * at_04[0]);  // 0.4 / 0.25 = 1.6 times the steps at 0.25
+}
