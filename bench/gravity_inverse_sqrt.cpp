@@ -3,6 +3,10 @@
 //   sqrt_div      1 / sqrt(r^2), the four-lane square root and divide (what the tree uses);
 //   newton3       the single-precision estimate and three double Newton steps (used before);
 //   float_newton_halley  a float Newton step, then one third-order double step;
+//   float_newton  the single-precision estimate and one float Newton step widened to double
+//                 (relative error of 1/r about 3e-7: single precision; not used);
+//   sqrt_only, div_only, floor   where the time goes: sqrt(r^2) alone, 1 / r^2 alone, and no
+//                 inverse at all (r^2 in place of 1/r: the loads, sums and products alone);
 //   alternating_sqrt_div_newton3  sqrt_div and newton3 on alternate vectors (faster, not used:
 //                 a pair would get different bits from its two sides).
 // Counter: ns_per_pair (times the clock in GHz: cycles per pair).
@@ -15,11 +19,20 @@
 
 namespace {
 
-enum class Method { SqrtDiv, Newton3, FloatNewtonHalley };
+enum class Method { SqrtDiv, Newton3, FloatNewtonHalley, FloatNewton, SqrtOnly, DivOnly, Floor };
 
 template <Method M>
 __attribute__((target("avx2,fma"))) inline __m256d inverse_r(__m256d r2) {
   if constexpr (M == Method::SqrtDiv) return _mm256_div_pd(_mm256_set1_pd(1), _mm256_sqrt_pd(r2));
+  if constexpr (M == Method::SqrtOnly) return _mm256_sqrt_pd(r2);
+  if constexpr (M == Method::DivOnly) return _mm256_div_pd(_mm256_set1_pd(1), r2);
+  if constexpr (M == Method::Floor) return r2;
+  if constexpr (M == Method::FloatNewton) {
+    const __m128 rf = _mm256_cvtpd_ps(r2);
+    const __m128 yf = _mm_rsqrt_ps(rf);
+    return _mm256_cvtps_pd(
+        _mm_mul_ps(yf, _mm_fnmadd_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(0.5f), rf), yf), yf, _mm_set1_ps(1.5f))));
+  }
   if constexpr (M == Method::Newton3) {
     __m256d y = _mm256_cvtps_pd(_mm_rsqrt_ps(_mm256_cvtpd_ps(r2)));
     const __m256d half_r2 = _mm256_mul_pd(_mm256_set1_pd(0.5), r2), three_halves = _mm256_set1_pd(1.5);
@@ -90,5 +103,9 @@ void BM_NearKernel(benchmark::State& state) {
 BENCHMARK(BM_NearKernel<Method::SqrtDiv>)->Name("BM_NearKernel/sqrt_div");
 BENCHMARK(BM_NearKernel<Method::Newton3>)->Name("BM_NearKernel/newton3");
 BENCHMARK(BM_NearKernel<Method::FloatNewtonHalley>)->Name("BM_NearKernel/float_newton_halley");
+BENCHMARK(BM_NearKernel<Method::FloatNewton>)->Name("BM_NearKernel/float_newton");
+BENCHMARK(BM_NearKernel<Method::SqrtOnly>)->Name("BM_NearKernel/sqrt_only");
+BENCHMARK(BM_NearKernel<Method::DivOnly>)->Name("BM_NearKernel/div_only");
+BENCHMARK(BM_NearKernel<Method::Floor>)->Name("BM_NearKernel/floor");
 BENCHMARK(BM_NearKernel<Method::SqrtDiv, Method::Newton3>)->Name("BM_NearKernel/alternating_sqrt_div_newton3");
 BENCHMARK_MAIN();
