@@ -4,6 +4,9 @@
   cylinder_lattice.py fig9 OUT [maps...]   Fig. 9: v_y contours of the medium runs, OUT/<map>/fields_*.csv
   cylinder_lattice.py fig10 OUT            Fig. 10: mean t_max vs v0 per map, OUT/ensemble.csv (+ table)
   cylinder_lattice.py table OUT            OUT/ensemble_table.md: reach t_final, mean t_max, reasons
+  cylinder_lattice.py compare OUT_A OUT_B [maps...]   the same map's v_y fields of two medium runs
+                                           (e.g. two CFL numbers): RMS difference / RMS v_y, final and
+                                           mean over the last 2 time units, beside each run's noise floor
 
 Fig. 9: particle v_y is interpolated onto a 200 x 200 grid by the normalised SPH sum
 f(x) = sum_b V_b f_b W(x - x_b, h_b) / sum_b V_b W(x - x_b, h_b) (Wendland C4, V_b = 1/rho_b up to the
@@ -122,6 +125,14 @@ def fig9(out, maps):
         print("\n".join(lines))
 
 
+def compare(out_a, out_b, maps):
+    for m in maps:
+        count = min(len(glob.glob(os.path.join(o, m, "fields_*.csv"))) for o in (out_a, out_b))
+        a, b = fields(out_a, m, count), fields(out_b, m, count)
+        print(f"{m}: final {rel_rms(a[2], b[2]):.3f}, mean_last_2 {rel_rms(a[3], b[3]):.3f} "
+              f"(noise floor {rel_rms(a[2], a[3]):.3f} / {rel_rms(b[2], b[3]):.3f}; t = {a[4]:.3g}, {a[5]} frames)")
+
+
 def fig10(out):
     rows = list(csv.DictReader(open(os.path.join(out, "ensemble.csv"))))
     maps = sorted({r["map"] for r in rows}, key=lambda m: m != "mirror")
@@ -181,9 +192,11 @@ def table(out):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) < 3 or sys.argv[1] not in ("fig9", "fig10", "table"):
+    if len(sys.argv) < 3 or sys.argv[1] not in ("fig9", "fig10", "table", "compare"):
         raise SystemExit(__doc__)
-    if sys.argv[1] == "fig9":
+    if sys.argv[1] == "compare" and len(sys.argv) >= 4:
+        compare(sys.argv[2], sys.argv[3], sys.argv[4:] or ["mirror", "nonlinear"])
+    elif sys.argv[1] == "fig9":
         fig9(sys.argv[2], sys.argv[3:] or ["mirror", "nonlinear"])
     elif sys.argv[1] == "fig10":
         fig10(sys.argv[2])
