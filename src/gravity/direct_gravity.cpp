@@ -8,30 +8,34 @@
 namespace sphark {
 
 template <class K>
-Real DirectGravity<K>::compute(const GravitySources& src, Real* acceleration, Real* potential) {
+void direct_field_at(const GravitySources& src, std::size_t a, Real G, Real* acceleration, Real* potential) {
   const Real* x = src.x;
   const Real* m = src.m;
   const Real* h = src.h;
+  Real ax = 0, ay = 0, az = 0, pot = self_potential<K>(m[a], h[a]);
+  for (std::size_t b = 0; b < src.n; ++b) {
+    if (b == a) continue;
+    const Real dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
+    const PairGravity p = softened_pair<K>(dx * dx + dy * dy + dz * dz, h[a], h[b]);
+    const Real c = m[b] * p.force_over_r;
+    ax -= c * dx;
+    ay -= c * dy;
+    az -= c * dz;
+    pot += m[b] * p.phi;
+  }
+  acceleration[0] = G * ax;
+  acceleration[1] = G * ay;
+  acceleration[2] = G * az;
+  *potential = G * pot;
+}
+
+template <class K>
+Real DirectGravity<K>::compute(const GravitySources& src, Real* acceleration, Real* potential) {
   const auto n = static_cast<std::ptrdiff_t>(src.n);
 #pragma omp parallel for schedule(dynamic, 16)
-  for (std::ptrdiff_t a = 0; a < n; ++a) {
-    Real ax = 0, ay = 0, az = 0, pot = self_potential<K>(m[a], h[a]);
-    for (std::ptrdiff_t b = 0; b < n; ++b) {
-      if (b == a) continue;
-      const Real dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
-      const PairGravity p = softened_pair<K>(dx * dx + dy * dy + dz * dz, h[a], h[b]);
-      const Real c = m[b] * p.force_over_r;
-      ax -= c * dx;
-      ay -= c * dy;
-      az -= c * dz;
-      pot += m[b] * p.phi;
-    }
-    acceleration[3 * a] = G_ * ax;
-    acceleration[3 * a + 1] = G_ * ay;
-    acceleration[3 * a + 2] = G_ * az;
-    potential[a] = G_ * pot;
-  }
-  return potential_energy(m, potential, src.n);
+  for (std::ptrdiff_t a = 0; a < n; ++a)
+    direct_field_at<K>(src, static_cast<std::size_t>(a), G_, acceleration + 3 * a, potential + a);
+  return potential_energy(src.m, potential, src.n);
 }
 
 Real potential_energy(const Real* m, const Real* potential, std::size_t n) {
@@ -40,7 +44,9 @@ Real potential_energy(const Real* m, const Real* potential, std::size_t n) {
   return 0.5 * e;
 }
 
-#define SPHARK_INSTANTIATE(K) template class DirectGravity<K>;
+#define SPHARK_INSTANTIATE(K)   \
+  template class DirectGravity<K>; \
+  template void direct_field_at<K>(const GravitySources&, std::size_t, Real, Real*, Real*);
 SPHARK_GRAVITY_KERNELS(SPHARK_INSTANTIATE)
 #undef SPHARK_INSTANTIATE
 

@@ -22,11 +22,27 @@ bool beyond_softening(const WalkNode& A, const WalkNode& B, Real d2) {
 }
 }  // namespace
 
+// The mass-dependent opening angle (self_gravity.hpp): g(theta) = theta^5 - c (1 - theta)^2 rises
+// from -c at 0 to 1 at 1, and g(theta_0) <= 0 for c >= c_0; Newton steps kept inside the bracket
+// [lo, hi] (bisection where a step leaves it) to the bracket's round-off.
+Real mass_opening_angle(Real theta_0, Real mass_ratio) {
+  const Real c = std::pow(theta_0, 5) / ((1 - theta_0) * (1 - theta_0)) * std::cbrt(std::max(mass_ratio, Real(1)));
+  Real lo = theta_0, hi = 1, t = theta_0;
+  for (int i = 0; i < 60 && hi - lo > 1e-14; ++i) {
+    const Real t2 = t * t, g = t2 * t2 * t - c * (1 - t) * (1 - t);
+    if (g == 0) return t;
+    (g < 0 ? lo : hi) = t;
+    const Real step = g / (5 * t2 * t2 + 2 * c * (1 - t));
+    t = (t - step > lo && t - step < hi) ? t - step : (lo + hi) / 2;
+  }
+  return t;
+}
+
 DualTreeWalk::Step DualTreeWalk::classify(std::uint32_t a, std::uint32_t b) const {
   const WalkNode &A = nodes_[a], &B = nodes_[b];
   if (a == b) return A.leaf() ? Step::Near : Step::Self;
-  const Real d2 = centre_distance2(A, B), size = A.radius + B.radius;
-  if (size * size < theta_ * theta_ * d2 && beyond_softening(A, B, d2)) return Step::Far;
+  const Real d2 = centre_distance2(A, B), open = A.critical + B.critical;
+  if (open * open < d2 && beyond_softening(A, B, d2)) return Step::Far;
   if (A.leaf() && B.leaf()) return Step::Near;
   if (B.leaf() || (!A.leaf() && A.radius >= B.radius)) return Step::SplitA;
   return Step::SplitB;
@@ -114,22 +130,27 @@ std::size_t DualTreeWalk::capacity() const {
   return c;
 }
 
-void DualTreeWalk::walk(const GravityTree& tree, Real theta) {
+void DualTreeWalk::walk(const GravityTree& tree, Real theta, GravityOpening opening) {
   if (!(theta > 0 && theta < 1)) throw std::invalid_argument("DualTreeWalk: theta must be in (0, 1)");
-  theta_ = theta;
   const std::size_t capacity_before = capacity();
   const std::vector<TreeNode>& tn = tree.nodes();
   nodes_.resize(tn.size());
   const auto nn = static_cast<std::ptrdiff_t>(tn.size());
+  const Real root_mass = tn.empty() ? 0 : tn[0].mass;
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < nn; ++i) {
     const TreeNode& t = tn[i];
-    nodes_[i] = {{t.com[0], t.com[1], t.com[2]}, t.radius, t.reach, t.count(), t.left, t.right};
+    const Real theta_c = opening == GravityOpening::Fixed || !(t.mass > 0) ? theta
+                                                                          : mass_opening_angle(theta, root_mass / t.mass);
+    nodes_[i] = {{t.com[0], t.com[1], t.com[2]}, t.radius, t.reach, t.radius / theta_c, t.count(), t.left, t.right};
   }
-  if (found_.size() < 1 + static_cast<std::size_t>(kJobs)) found_.resize(1 + kJobs);
+  if (found_.empty()) found_.resize(1 + kJobs);
   for (Found& f : found_) f.far.clear(), f.near.clear();
   queue_.clear();
   if (!nodes_.empty()) expand_breadth_first(found_[0]);
+  // The expansion stops at kJobs or more waiting pairs: up to kJobs + 1 (a Self step takes one
+  // and adds three), so the job slots follow the queue.
+  if (found_.size() < 1 + queue_.size()) found_.resize(1 + queue_.size());
   const auto jobs = static_cast<std::ptrdiff_t>(queue_.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::ptrdiff_t j = 0; j < jobs; ++j) walk_depth_first(queue_[j], found_[1 + j]);

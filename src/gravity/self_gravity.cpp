@@ -21,6 +21,14 @@ GravitySolver parse_gravity_solver(std::string_view name) {
 
 std::string_view gravity_solver_name(GravitySolver s) { return s == GravitySolver::Direct ? "direct" : "tree"; }
 
+GravityOpening parse_gravity_opening(std::string_view name) {
+  if (name == "fixed") return GravityOpening::Fixed;
+  if (name == "mass") return GravityOpening::Mass;
+  throw std::invalid_argument("unknown tree opening '" + std::string(name) + "' (choose fixed or mass)");
+}
+
+std::string_view gravity_opening_name(GravityOpening o) { return o == GravityOpening::Fixed ? "fixed" : "mass"; }
+
 template <class K>
 std::unique_ptr<SelfGravity> make_self_gravity(GravitySolver solver, const GravityOptions& options) {
   if (solver == GravitySolver::Direct) return std::make_unique<DirectGravity<K>>(options);

@@ -34,7 +34,7 @@ TreeGravity<K>::TreeGravity(const GravityOptions& options) : opt_(options) {
 template <class K>
 Real TreeGravity<K>::compute(const GravitySources& src, Real* acceleration, Real* potential) {
   tree_.build(src, K::support, opt_.leaf_size);
-  walk_.walk(tree_, opt_.theta);
+  walk_.walk(tree_, opt_.theta, opt_.opening);
   bool grew = gravity_detail::resize_reporting_growth(local_, tree_.nodes().size());
   grew |= gravity_detail::resize_reporting_growth(runs_, walk_.near().partner.size());
   grew |= gravity_detail::resize_reporting_growth(newtonian_runs_, tree_.nodes().size());

@@ -41,13 +41,15 @@ TEST(GravityConservation, MomentumToRoundOff) {
   const Real direct = momentum_error(p.m, solve(GravitySolver::Direct, p.sources()).acc);
   std::printf("momentum error: direct %.2e", direct);
   EXPECT_LT(direct, 1e-15);
-  for (Real theta : {0.3, 0.5, 0.7}) {
-    GravityOptions opt;
-    opt.theta = theta;
-    const Real tree = momentum_error(p.m, solve(GravitySolver::Tree, p.sources(), opt).acc);
-    std::printf("  tree(theta %.1f) %.2e", theta, tree);
-    EXPECT_LT(tree, 1e-15) << theta;
-  }
+  for (GravityOpening opening : {GravityOpening::Fixed, GravityOpening::Mass})
+    for (Real theta : {0.3, 0.5, 0.7}) {
+      GravityOptions opt;
+      opt.theta = theta;
+      opt.opening = opening;
+      const Real tree = momentum_error(p.m, solve(GravitySolver::Tree, p.sources(), opt).acc);
+      std::printf("  tree(%s %.1f) %.2e", gravity_opening_name(opening).data(), theta, tree);
+      EXPECT_LT(tree, 1e-15) << theta << ' ' << gravity_opening_name(opening);
+    }
   std::printf("\n");
 }
 
@@ -98,6 +100,10 @@ TEST(GravitySolverChoice, ParsesNamesAndBuildsSolvers) {
   GravityOptions o;
   o.leaf_size = 0;
   EXPECT_THROW(make_self_gravity<CubicSpline<3>>(GravitySolver::Tree, o), std::invalid_argument);
+  EXPECT_EQ(parse_gravity_opening("fixed"), GravityOpening::Fixed);
+  EXPECT_EQ(parse_gravity_opening("mass"), GravityOpening::Mass);
+  EXPECT_THROW(parse_gravity_opening("dehnen"), std::invalid_argument);
+  EXPECT_EQ(gravity_opening_name(GravityOpening::Mass), "mass");
 }
 
 TEST(GravityTimeStep, IsTheSmallestSqrtHOverA) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "sphark/gravity/force_errors.hpp"
 #include "sphark/gravity/self_gravity.hpp"
 #include "sphark/kernels/kernels.hpp"
 
@@ -30,23 +31,7 @@ Field solve(GravitySolver solver, const GravitySources& src, const GravityOption
 
 // |a_test - a_ref| / |a_ref| per particle.
 inline std::vector<Real> relative_force_errors(const Field& test, const Field& ref) {
-  std::vector<Real> e(ref.pot.size());
-  for (std::size_t i = 0; i < e.size(); ++i) {
-    Real d2 = 0, r2 = 0;
-    for (int c = 0; c < 3; ++c) {
-      d2 += (test.acc[3 * i + c] - ref.acc[3 * i + c]) * (test.acc[3 * i + c] - ref.acc[3 * i + c]);
-      r2 += ref.acc[3 * i + c] * ref.acc[3 * i + c];
-    }
-    e[i] = std::sqrt(d2 / r2);
-  }
-  return e;
-}
-
-// The p-quantile (0 <= p <= 1) by the nearest rank.
-inline Real quantile(std::vector<Real> v, Real p) {
-  const auto k = static_cast<std::size_t>(std::lround(p * static_cast<Real>(v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
+  return sphark::relative_force_errors(test.acc.data(), ref.acc.data(), ref.pot.size());
 }
 
 // |sum_a m_a a_a| / sum_a |m_a a_a|

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <initializer_list>
+#include <tuple>
 
 #include "gravity_test_support.hpp"
 #include "sphark/gravity/sphere_particles.hpp"
@@ -20,23 +22,26 @@ struct ErrorRow {
   Real theta, median, p99, energy;
 };
 
-std::vector<ErrorRow> tree_errors(const SphereParticles& p, const char* name) {
+std::vector<ErrorRow> tree_errors(const SphereParticles& p, const char* name,
+                                  GravityOpening opening = GravityOpening::Fixed,
+                                  std::initializer_list<Real> thetas = {0.3, 0.5, 0.7}) {
   const Field direct = solve(GravitySolver::Direct, p.sources());
   std::vector<ErrorRow> rows;
-  for (Real theta : {0.3, 0.5, 0.7}) {
+  for (Real theta : thetas) {
     GravityOptions opt;
     opt.theta = theta;
+    opt.opening = opening;
     const Field tree = solve(GravitySolver::Tree, p.sources(), opt);
     const std::vector<Real> e = relative_force_errors(tree, direct);
     rows.push_back({theta, quantile(e, 0.5), quantile(e, 0.99), std::abs(tree.energy / direct.energy - 1)});
-    std::printf("%-10s theta %.1f  median %.3e  p99 %.3e  |dE/E| %.3e\n", name, theta, rows.back().median,
+    std::printf("%-10s %s theta %.2f  median %.3e  p99 %.3e  |dE/E| %.3e\n", name, gravity_opening_name(opening).data(), theta, rows.back().median,
                 rows.back().p99, rows.back().energy);
   }
   return rows;
 }
 
 void expect_accurate_and_growing_with_theta(const std::vector<ErrorRow>& rows) {
-  EXPECT_LE(rows[1].median, 1e-3);  // the acceptance at theta = 0.5
+  EXPECT_LE(rows[1].median, 1e-3);  // the acceptance at the default angle
   EXPECT_LE(rows[1].energy, 1e-4);
   for (std::size_t k = 1; k < rows.size(); ++k) {
     EXPECT_GT(rows[k].median, rows[k - 1].median);
@@ -55,6 +60,17 @@ TEST(TreeAccuracy, UniformSphere) {
 TEST(TreeAccuracy, InverseRSphere) {
   const SphereParticles p = random_sphere(SphereProfile::InverseR, 4000, 1, 1, 1.2, 12);
   expect_accurate_and_growing_with_theta(tree_errors(p, "1/r"));
+}
+
+// The mass-dependent opening angle at theta_0 = 0.25, kDefaultMassTheta0, 0.45: the same
+// acceptance (median <= 1e-3, |dE/E| <= 1e-4) at the default root angle, errors growing with theta_0.
+TEST(TreeAccuracy, MassDependentOpening) {
+  for (auto [profile, seed, name] : {std::tuple{SphereProfile::Uniform, 11, "uniform"},
+                                     std::tuple{SphereProfile::InverseR, 12, "1/r"}}) {
+    const SphereParticles p = random_sphere(profile, 4000, 1, 1, 1.2, seed);
+    expect_accurate_and_growing_with_theta(
+        tree_errors(p, name, GravityOpening::Mass, {0.25, kDefaultMassTheta0, 0.45}));
+  }
 }
 
 // Every kernel through the tree's near field (its own polynomial pieces in the vector loops):

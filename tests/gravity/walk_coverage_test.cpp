@@ -49,10 +49,12 @@ Coverage coverage(const GravityTree& tree, const DualTreeWalk& walk) {
   return c;
 }
 
-void expect_exact_mutual_cover(const SphereParticles& p, int leaf_size, Real theta) {
+void expect_exact_mutual_cover(const SphereParticles& p, int leaf_size, Real theta,
+                               GravityOpening opening = GravityOpening::Fixed) {
   GravityOptions opt;
   opt.leaf_size = leaf_size;
   opt.theta = theta;
+  opt.opening = opening;
   TreeGravity<CubicSpline<3>> gravity(opt);
   std::vector<Real> acc(3 * p.size()), pot(p.size());
   gravity.compute(p.sources(), acc.data(), pot.data());
@@ -87,5 +89,17 @@ TEST(DualTreeWalk, CoversEveryParticlePairOnceAndMutually) {
     for (Real theta : {0.3, 0.5, 0.7}) {
       expect_exact_mutual_cover(uniform, leaf, theta);
       expect_exact_mutual_cover(clumped, leaf, theta);
+    }
+}
+
+// The mass-dependent opening angle (each cell its own theta(M), the criterion still symmetric in
+// A and B) keeps the cover exact and mutual.
+TEST(DualTreeWalk, MassDependentOpeningCoversEveryPairOnceAndMutually) {
+  const SphereParticles uniform = random_sphere(SphereProfile::Uniform, 1500, 1, 1, 1.2, 21);
+  const SphereParticles clumped = random_sphere(SphereProfile::InverseR, 1500, 1, 1, 1.2, 22);
+  for (int leaf : {1, 8})
+    for (Real theta_0 : {0.25, 0.35, 0.5}) {
+      expect_exact_mutual_cover(uniform, leaf, theta_0, GravityOpening::Mass);
+      expect_exact_mutual_cover(clumped, leaf, theta_0, GravityOpening::Mass);
     }
 }

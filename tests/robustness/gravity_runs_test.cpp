@@ -68,3 +68,39 @@ TEST(GravityRuns, RestartWithASinkIsBitForBit) {
   EXPECT_LT(whole.particles(), split.particles());
   expect_same_continuation(whole, restarted);
 }
+
+// --opening mass reaches the tree: the checkpoint's scene names it with its default root angle
+// 0.35 and the run differs from the fixed angle's; a restart keeps it (the stored options), and
+// one that asks for the fixed angle is refused (exit 2: other scene parameters).
+TEST(GravityRuns, MassDependentOpeningIsRecordedAndChecked) {
+  TempDir dir;
+  const std::filesystem::path fixed = dir.path() / "fixed", mass = dir.path() / "mass";
+  const auto with = [](Args more) {
+    Args a = sphere("off");
+    a.insert(a.end(), {"--t-end", "0.05"});
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  ASSERT_EQ(run(require_example("gravitating_sphere"), with({"--out", fixed.string()}), dir.path()).exit_code, 0);
+  const Finished m = run(require_example("gravitating_sphere"), with({"--out", mass.string(), "--opening", "mass"}),
+                         dir.path());
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const std::filesystem::path ckpt = mass / "uniform" / "checkpoint.bin";
+  const Checkpoint a = load_checkpoint(fixed / "uniform" / "checkpoint.bin"), b = load_checkpoint(ckpt);
+  EXPECT_EQ(a.text("scene").find("opening"), std::string::npos);  // a fixed run's text is as before
+  EXPECT_NE(b.text("scene").find("opening=mass"), std::string::npos) << b.text("scene");
+  EXPECT_NE(b.text("scene").find("theta=0.35"), std::string::npos) << b.text("scene");
+  EXPECT_EQ(a.t, b.t);
+  EXPECT_FALSE(bit_equal(a.y, b.y));
+  const auto restart = [&](Args more, const char* out) {
+    Args r{"--restart", ckpt.string(), "--out", (dir.path() / out).string(), "--t-end", "0.06"};
+    r.insert(r.end(), more.begin(), more.end());
+    return run(require_example("gravitating_sphere"), r, dir.path());
+  };
+  const Finished kept = restart({}, "kept");
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_EQ(load_checkpoint(dir.path() / "kept" / "uniform" / "checkpoint.bin").text("scene"), b.text("scene"));
+  const Finished refused = restart({"--opening", "fixed"}, "refused");
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("scene parameters"), std::string::npos) << refused.err;
+}

@@ -22,6 +22,11 @@ class DirectGravity final : public SelfGravity {
   Real G_;
 };
 
+// The sum above for particle a alone (acceleration: 3 values), O(N): the whole solver's inner
+// loop, and a reference for a sample of particles where N^2 is too dear (bench/gravity.cpp).
+template <class K>
+void direct_field_at(const GravitySources& src, std::size_t a, Real G, Real* acceleration, Real* potential);
+
 // (1/2) sum_a m_a Phi_a, summed in index order.
 Real potential_energy(const Real* m, const Real* potential, std::size_t n);
 

@@ -1,7 +1,8 @@
 #pragma once
 // The mutual (dual-tree) walk of Dehnen (2000, ApJ 536, L39; 2002, JCP 179, 27): starting from
 // (root, root), a pair of nodes (A, B) is
-//   far     if r_A + r_B < theta |z_A - z_B|  and  |z_A - z_B| - r_A - r_B >= max(reach_A, reach_B)
+//   far     if r_A / theta_A + r_B / theta_B < |z_A - z_B|  and  |z_A - z_B| - r_A - r_B >= max(reach_A, reach_B)
+//           (theta_C = theta for GravityOpening::Fixed, theta(M_C) for Mass: self_gravity.hpp)
 //           (no particle of A is inside the softening of one of B or vice versa): multipoles;
 //   near    if not far and both are leaves: every particle pair directly, softened where needed
 //           (flagged Newtonian when no pair of their particles is inside a softening);
@@ -28,6 +29,10 @@ struct PartnerLists {
   std::uint32_t end(std::uint32_t i) const { return start[i + 1]; }
 };
 
+// The opening angle of a cell of mass M with GravityOpening::Mass: the root of
+// theta^5 / (1 - theta)^2 = theta_0^5 / (1 - theta_0)^2 (M_root / M)^(1/3) in [theta_0, 1).
+Real mass_opening_angle(Real theta_0, Real mass_ratio_root_over_cell);
+
 class DualTreeWalk {
  public:
   // Partner entries of the near lists carry this bit when every pair of the two leaves is
@@ -36,7 +41,7 @@ class DualTreeWalk {
   static constexpr int kJobs = 256;
 
   // Throws std::invalid_argument unless 0 < theta < 1.
-  void walk(const GravityTree& tree, Real theta);
+  void walk(const GravityTree& tree, Real theta, GravityOpening opening = GravityOpening::Fixed);
 
   const PartnerLists& far() const { return far_; }    // indexed by node
   const PartnerLists& near() const { return near_; }  // indexed by node (non-empty for leaves)
@@ -46,7 +51,7 @@ class DualTreeWalk {
 
   // What the walk reads of a node (one cache line).
   struct WalkNode {
-    Real com[3], radius, reach;
+    Real com[3], radius, reach, critical;  // critical = radius / theta_C
     std::uint32_t count, left, right;
     bool leaf() const { return left == 0; }
   };
@@ -69,7 +74,6 @@ class DualTreeWalk {
   std::size_t capacity() const;
 
   std::vector<WalkNode> nodes_;
-  Real theta_ = 0.5;
   std::vector<NodePair> queue_;
   std::vector<Found> found_;  // [0]: found while expanding; [1 + j]: job j
   PartnerLists far_, near_;

@@ -31,10 +31,28 @@ enum class GravitySolver { Direct, Tree };
 GravitySolver parse_gravity_solver(std::string_view name);
 std::string_view gravity_solver_name(GravitySolver s);
 
+// How the tree's opening angle varies between cells (dual_tree_walk.hpp):
+//   Fixed  every cell opens at theta: A, B interact by multipoles iff r_A + r_B < theta |z_A - z_B|
+//   Mass   Dehnen (2002, JCP 179, 27; falcON): cell C opens at theta(M_C), with
+//          theta^5 / (1 - theta)^2 = theta_0^5 / (1 - theta_0)^2 (M_root / M_C)^(1/3),
+//          theta_0 = theta the root's; A, B interact iff r_A / theta_A + r_B / theta_B < |z_A - z_B|
+enum class GravityOpening { Fixed, Mass };
+
+// "fixed" | "mass"; throws std::invalid_argument naming the choices otherwise.
+GravityOpening parse_gravity_opening(std::string_view name);
+std::string_view gravity_opening_name(GravityOpening o);
+
+// The default angle of each criterion; the two give the same force errors against direct
+// summation (median and 99th percentile, docs/gravity.md "Mass-dependent opening").
+inline constexpr Real kDefaultFixedTheta = 0.5;
+inline constexpr Real kDefaultMassTheta0 = 0.35;
+constexpr Real default_theta(GravityOpening o) { return o == GravityOpening::Fixed ? kDefaultFixedTheta : kDefaultMassTheta0; }
+
 struct GravityOptions {
   Real G = 1;          // gravitational constant in code units
-  Real theta = 0.5;    // tree: cells A, B interact by multipoles iff r_A + r_B < theta |z_A - z_B|
+  Real theta = kDefaultFixedTheta;  // tree: the opening angle (Fixed), or the root's (Mass)
   int leaf_size = 8;   // tree: particles per leaf at most
+  GravityOpening opening = GravityOpening::Fixed;
 };
 
 class SelfGravity {

@@ -64,6 +64,7 @@ SpmhdOptions cloud_collapse_options(const CloudCollapseParams& p, const CloudNum
   o.self_gravity = true;
   o.gravity_solver = p.gravity;
   o.gravity_theta = p.theta;
+  o.gravity_opening = p.opening;
   o.G = 1;
   // Sinks soften their gravity with the kernel inside r_acc (h = r_acc / 2, Newtonian beyond):
   // gas inside r_acc that the checks do not accrete yet feels a finite force.

@@ -49,7 +49,10 @@ void CloudCollapseScene::add_options(OptionParser& p) {
   p.add_flag("--no-tensile-correction", &no_tensile_correction_, "leave out the correction (9) of the Maxwell stress");
   p.add("--courant", &params_.courant, "Courant number of dt = C h / v_sig", Range{0.01, 1});
   p.add("--gravity", &gravity_, "gravity solver", OneOf{{"tree", "direct"}});
-  p.add("--theta", &params_.theta, "tree opening angle", Range{0.05, 0.95});
+  p.add("--theta", &params_.theta, "tree opening angle (the root's with --opening mass; default 0.5 fixed, 0.35 mass)",
+        Range{0.05, 0.95});
+  p.add("--opening", &opening_, "tree opening: one angle, or Dehnen's mass-dependent angle (docs/gravity.md)",
+        OneOf{{"fixed", "mass"}});
   p.add("--diagnostics-every", &diagnostics_every_, "time between diagnostics rows [t_ff]", Positive{});
 }
 
@@ -57,6 +60,8 @@ void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core,
   limit_to_t_end(p, "--diagnostics-every", diagnostics_every_, core.t_end);  // both in t_ff
   params_.particles = static_cast<std::size_t>(particles_);
   params_.gravity = parse_gravity_solver(gravity_);
+  params_.opening = parse_gravity_opening(opening_);
+  if (!p.was_given("--theta")) params_.theta = default_theta(params_.opening);
   params_.local_ch = local_ch_;
   params_.tensile_correction = !no_tensile_correction_;
   try {
@@ -102,6 +107,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   append_key_value(text, "courant", params_.courant);
   append_key_value(text, "gravity", gravity_);
   append_key_value(text, "theta", params_.theta);
+  if (params_.opening != GravityOpening::Fixed) append_key_value(text, "opening", opening_);  // old checkpoints restart
   append_key_value(text, "step_floor", params_.step_floor_tff);
   return text;
 }

@@ -21,6 +21,7 @@ SpmhdOptions gravitating_sphere_options(const GravitatingSphereParams& p) {
   o.self_gravity = true;
   o.gravity_solver = p.gravity;
   o.gravity_theta = p.theta;
+  o.gravity_opening = p.opening;
   o.force_courant = p.force_courant;
   if (p.sinks) {  // as the cloud collapse: kernel-softened sink gravity inside r_acc
     o.sink_particles = true;

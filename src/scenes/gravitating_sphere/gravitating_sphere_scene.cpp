@@ -41,7 +41,10 @@ void GravitatingSphereScene::add_options(OptionParser& p) {
   p.add_flag("--random", &params_.random, "random placement instead of the close-packed lattice");
   p.add("--u0", &params_.u0, "initial specific internal energy (0: 1e-4 uniform, 0.05 Evrard)", NonNegative{});
   p.add("--gamma", &params_.gamma, "adiabatic index", Range{1.001, 3});
-  p.add("--theta", &params_.theta, "tree opening angle", Range{0.05, 0.95});
+  p.add("--theta", &params_.theta, "tree opening angle (the root's with --opening mass; default 0.5 fixed, 0.35 mass)",
+        Range{0.05, 0.95});
+  p.add("--opening", &opening_, "tree opening: one angle, or Dehnen's mass-dependent angle (docs/gravity.md)",
+        OneOf{{"fixed", "mass"}});
   p.add("--gravity", &gravity_, "gravity solver", OneOf{{"tree", "direct"}});
   p.add("--alpha", &params_.alpha_visc, "artificial viscosity (default: 0 uniform, 1 Evrard)", NonNegative{});
   p.add("--courant", &params_.courant, "Courant number of dt = C h / v_sig", Range{0.01, 1});
@@ -64,6 +67,8 @@ void GravitatingSphereScene::check_options(const OptionParser& p, CoreOptions& c
   for (const char* o : {"--rho-sink", "--r-acc"})
     if (!params_.sinks && p.was_given(o)) p.fail(o, "needs --sinks on");
   params_.gravity = parse_gravity_solver(gravity_);
+  params_.opening = parse_gravity_opening(opening_);
+  if (!p.was_given("--theta")) params_.theta = default_theta(params_.opening);
   limit_to_t_end(p, "--diagnostics-every", diagnostics_every_, core.t_end);
 }
 
@@ -75,6 +80,7 @@ std::string GravitatingSphereScene::scene_text(const std::string&) const {
   append_key_value(text, "u0", params_.u0);
   append_key_value(text, "gamma", params_.gamma);
   append_key_value(text, "theta", params_.theta);
+  if (params_.opening != GravityOpening::Fixed) append_key_value(text, "opening", opening_);  // old checkpoints restart
   append_key_value(text, "gravity", gravity_);
   append_key_value(text, "alpha", params_.alpha_visc);
   append_key_value(text, "courant", params_.courant);

@@ -73,7 +73,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   allocate_per_particle();
   if (opt_.self_gravity) {
     if (D != 3 || !opt_.evolve_particles) throw std::invalid_argument("SpmhdScheme: self-gravity needs D = 3 and moving particles");
-    gravity_ = make_self_gravity<K>(opt_.gravity_solver, GravityOptions{opt_.G, opt_.gravity_theta, 8});
+    gravity_ = make_self_gravity<K>(opt_.gravity_solver, GravityOptions{opt_.G, opt_.gravity_theta, 8, opt_.gravity_opening});
   }
 }
 

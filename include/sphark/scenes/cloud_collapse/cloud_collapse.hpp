@@ -57,7 +57,8 @@ struct CloudCollapseParams {
   Real courant = 0.3;
   Real force_courant = 0.25;
   GravitySolver gravity = GravitySolver::Tree;
-  Real theta = 0.5;                   // tree opening angle
+  Real theta = kDefaultFixedTheta;    // tree opening angle (the root's with the mass-dependent opening)
+  GravityOpening opening = GravityOpening::Fixed;
   Real step_floor_tff = 1e-7;         // a run whose steps stay below this (t_ff) fails, exit 3
 };
 

@@ -46,6 +46,7 @@ class CloudCollapseScene final : public Scene {
   CloudCollapseParams params_;
   std::string variant_ = "cleaning";
   std::string gravity_ = "tree";
+  std::string opening_ = "fixed";
   long particles_ = 2000;
   bool local_ch_ = false, no_tensile_correction_ = false;
   Real diagnostics_every_ = 0.005;  // t_ff

@@ -30,7 +30,8 @@ struct GravitatingSphereParams {
   bool random = false;              // random placement instead of the lattice
   Real u0 = 0;                      // initial specific internal energy (0: the profile's, 1e-4 / 0.05)
   Real gamma = 5.0 / 3.0;
-  Real theta = 0.5;                 // tree opening angle
+  Real theta = kDefaultFixedTheta;  // tree opening angle (the root's with the mass-dependent opening)
+  GravityOpening opening = GravityOpening::Fixed;
   GravitySolver gravity = GravitySolver::Tree;
   Real alpha_visc = 1;              // artificial viscosity (Monaghan 1997 signal velocity)
   Real alpha_u = 0;                 // artificial conductivity (off: the literature's Evrard runs have none)

@@ -31,6 +31,7 @@ class GravitatingSphereScene final : public Scene {
  private:
   GravitatingSphereParams params_;
   std::string gravity_ = "tree";
+  std::string opening_ = "fixed";
   std::string sinks_ = "off";
   long particles_ = 30000;
   Real diagnostics_every_ = 0.01;

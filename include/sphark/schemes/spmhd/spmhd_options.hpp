@@ -56,7 +56,8 @@ struct SpmhdOptions {
   bool self_gravity = false;
   GravitySolver gravity_solver = GravitySolver::Tree;
   Real G = 1;                   // gravitational constant in code units
-  Real gravity_theta = 0.5;     // tree opening angle
+  Real gravity_theta = kDefaultFixedTheta;  // tree opening angle (the root's with GravityOpening::Mass)
+  GravityOpening gravity_opening = GravityOpening::Fixed;
   Real force_courant = 0.25;    // with gravity, max_stable_dt also <= force_courant sqrt(h / |a|)
   // Sink particles (a second species: position, velocity, mass, spin; none at first), with
   // gravity on the gas and on each other (gravity/point_mass_gravity.hpp). Created and fed
