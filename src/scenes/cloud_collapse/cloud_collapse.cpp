@@ -61,15 +61,9 @@ SpmhdOptions cloud_collapse_options(const CloudCollapseParams& p, const CloudNum
   if (p.variant == "cleaning+resistivity") o.alpha_b = p.alpha_b;
   o.courant = p.courant;
   o.force_courant = p.force_courant;
-  o.self_gravity = true;
-  o.gravity_solver = p.gravity;
-  o.gravity_theta = p.theta;
-  o.gravity_opening = p.opening;
+  enable_self_gravity(o, p.gravity, p.theta, p.opening);
   o.G = 1;
-  // Sinks soften their gravity with the kernel inside r_acc (h = r_acc / 2, Newtonian beyond):
-  // gas inside r_acc that the checks do not accrete yet feels a finite force.
-  o.sink_particles = true;
-  o.sink_softening = {PointMassSoftening::Kernel, c.accretion_radius / CubicSpline<3>::support};
+  enable_kernel_softened_sinks(o, c.accretion_radius);
   return o;
 }
 

@@ -18,15 +18,9 @@ SpmhdOptions gravitating_sphere_options(const GravitatingSphereParams& p) {
   o.alpha_visc = p.alpha_visc;
   o.alpha_u = p.alpha_u;
   o.courant = p.courant;
-  o.self_gravity = true;
-  o.gravity_solver = p.gravity;
-  o.gravity_theta = p.theta;
-  o.gravity_opening = p.opening;
+  enable_self_gravity(o, p.gravity, p.theta, p.opening);
   o.force_courant = p.force_courant;
-  if (p.sinks) {  // as the cloud collapse: kernel-softened sink gravity inside r_acc
-    o.sink_particles = true;
-    o.sink_softening = {PointMassSoftening::Kernel, p.accretion_radius / CubicSpline<3>::support};
-  }
+  if (p.sinks) enable_kernel_softened_sinks(o, p.accretion_radius);  // as the cloud collapse
   return o;
 }
 

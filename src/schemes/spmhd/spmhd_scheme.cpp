@@ -16,6 +16,18 @@
 
 namespace sphark {
 
+void enable_self_gravity(SpmhdOptions& o, GravitySolver solver, Real theta, GravityOpening opening) {
+  o.self_gravity = true;
+  o.gravity_solver = solver;
+  o.gravity_theta = theta;
+  o.gravity_opening = opening;
+}
+
+void enable_kernel_softened_sinks(SpmhdOptions& o, Real accretion_radius) {
+  o.sink_particles = true;
+  o.sink_softening = {PointMassSoftening::Kernel, accretion_radius / CubicSpline<3>::support};
+}
+
 Cleaning parse_cleaning(std::string_view s) {
   if (s == "none") return Cleaning::None;
   if (s == "constrained") return Cleaning::Constrained;

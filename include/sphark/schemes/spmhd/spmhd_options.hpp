@@ -67,6 +67,13 @@ struct SpmhdOptions {
   Real skin = 0.25;             // Verlet skin: particle i lists neighbours within 2 h_i (1 + skin)
 };
 
+// Self-gravity on (3D) with the solver and the tree's opening (docs/gravity.md).
+void enable_self_gravity(SpmhdOptions& o, GravitySolver solver, Real theta, GravityOpening opening);
+// Sinks whose gravity is softened with the cubic spline inside the accretion radius r_acc
+// (h = r_acc / 2, Newtonian beyond): gas inside r_acc that the checks do not accrete yet feels a
+// finite force.
+void enable_kernel_softened_sinks(SpmhdOptions& o, Real accretion_radius);
+
 // "none", "constrained", "nonconservative"
 Cleaning parse_cleaning(std::string_view s);
 std::string_view cleaning_name(Cleaning c);
