@@ -63,6 +63,13 @@ def column_density_figure(found, out):
         full = os.path.join(d, "column_density_y.csv")
         zoom = os.path.join(d, "column_density_y_zoom.csv")
         if not (os.path.exists(full) and os.path.exists(zoom)):
+            # a run that failed writes no maps: say so where its row would be
+            for ax in axes[row]:
+                ax.axis("off")
+            axes[row][0].text(0.0, 0.5, f"{label}: no column density map -- the run ended at "
+                              f"t = {table['t_over_tff'][-1]:.4f} t_ff\n(a failed run writes none; "
+                              "its last frame and checkpoint are in its folder)", fontsize=10,
+                              transform=axes[row][0].transAxes, va="center")
             continue
         whole, near = read_map(full), read_map(zoom)
         radius = (whole["extent"][1] - whole["extent"][0]) / 2.5   # the full map is 2.5 R wide
