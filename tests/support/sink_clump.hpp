@@ -19,8 +19,9 @@ struct Clump {
 };
 
 // 300 particles of an Evrard sphere, converging and rotating, with B, psi, tree gravity, and
-// particle 0 turned into a sink of three particle masses.
-inline Clump clump() {
+// particle 0 turned into a sink of three particle masses; eq. (9) left out within
+// tensile_exclusion of the sink.
+inline Clump clump(Real tensile_exclusion = 0) {
   SphereSpec spec;
   spec.particles = 300;
   spec.radius = 0.1;
@@ -32,6 +33,7 @@ inline Clump clump() {
   o.self_gravity = true;
   o.gravity_solver = GravitySolver::Tree;
   o.sink_particles = true;
+  o.tensile_sink_exclusion = tensile_exclusion;
   Clump c{std::make_unique<SpmhdScheme<3>>(std::vector<Real>(n, place.particle_mass), o), {}};
   SpmhdScheme<3>& s = *c.scheme;
   std::vector<Real> all(s.size(), 0), scratch(s.size());

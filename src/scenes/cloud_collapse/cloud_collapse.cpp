@@ -52,6 +52,7 @@ SpmhdOptions cloud_collapse_options(const CloudCollapseParams& p, const CloudNum
   o.alpha_visc = p.alpha_visc;
   o.alpha_u = 0;
   o.subtract_monopole_force = p.tensile_correction;
+  o.tensile_sink_exclusion = p.tensile_exclusion * c.accretion_radius;
   if (p.variant != "none") {
     o.cleaning = Cleaning::Constrained;
     o.sigma = p.sigma;

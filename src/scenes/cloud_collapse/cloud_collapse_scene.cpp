@@ -47,6 +47,8 @@ void CloudCollapseScene::add_options(OptionParser& p) {
   p.add("--step-floor", &params_.step_floor_tff, "the run fails (exit 3) when its steps stay below this [t_ff]",
         Range{1e-12, 1e-2});
   p.add_flag("--no-tensile-correction", &no_tensile_correction_, "leave out the correction (9) of the Maxwell stress");
+  p.add("--tensile-exclusion", &params_.tensile_exclusion,
+        "leave out the correction (9) for gas within this many accretion radii of a sink (0: nowhere)", Range{0, 100});
   p.add("--courant", &params_.courant, "Courant number of dt = C h / v_sig", Range{0.01, 1});
   p.add("--gravity", &gravity_, "gravity solver", OneOf{{"tree", "direct"}});
   p.add("--theta", &params_.theta, "tree opening angle (the root's with --opening mass; default 0.5 fixed, 0.35 mass)",
@@ -107,6 +109,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   append_key_value(text, "courant", params_.courant);
   append_key_value(text, "gravity", gravity_);
   append_key_value(text, "theta", params_.theta);
+  if (params_.tensile_exclusion > 0) append_key_value(text, "tensile_exclusion", params_.tensile_exclusion);
   if (params_.opening != GravityOpening::Fixed) append_key_value(text, "opening", opening_);  // old checkpoints restart
   append_key_value(text, "step_floor", params_.step_floor_tff);
   return text;

@@ -10,6 +10,22 @@
 
 namespace sphark {
 
+// The gas slots within opt_.tensile_sink_exclusion of a sink (minimum image), where the force
+// pass leaves eq. (9) out; nullptr when it is applied everywhere.
+template <int D, class K>
+const std::uint8_t* SpmhdScheme<D, K>::tensile_exclusion(const Real* y) {
+  const std::size_t ns = layout_.particles(Species::Sink);
+  if (!opt_.subtract_monopole_force || !(opt_.tensile_sink_exclusion > 0) || ns == 0) return nullptr;
+  const Real r2 = opt_.tensile_sink_exclusion * opt_.tensile_sink_exclusion;
+  const Real* xs = y + layout_.offset(Species::Sink, Field::Position);
+  const MinimumImage<D> image(ns_.box());
+  tensile_off_.assign(n_, 0);
+  for (std::size_t a = 0; a < n_; ++a)
+    for (std::size_t k = 0; k < ns; ++k)
+      if (image(x_.data() + D * a, xs + 3 * k).squaredNorm() < r2) tensile_off_[a] = 1;
+  return tensile_off_.data();
+}
+
 template <int D, class K>
 typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Real t, const Real* y) {
   MomentumBudget m;
@@ -37,7 +53,9 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
   const auto gradient_factor = [&](std::size_t a, Real r) {
     return K::unit_f_over_r(r / h_[a], h_[a] / r) / std::pow(h_[a], D + 2);
   };
+  const std::uint8_t* off = tensile_exclusion(y);
   for (std::size_t a = 0; a < n_; ++a) {  // slots, serial: a fixed summation order
+    if (off && off[a]) continue;
     Real S = 0;  // eq. (9)'s symmetric divergence
     const Eigen::Map<const Vec<D>> oB_a(&bo[3 * a]);
     for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
@@ -53,8 +71,9 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
   return m;
 }
 
-#define SPHARK_SPMHD_MOMENTUM(D, K) \
-  template SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Real, const Real*);
+#define SPHARK_SPMHD_MOMENTUM(D, K)                                                              \
+  template SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Real, const Real*); \
+  template const std::uint8_t* SpmhdScheme<D, K>::tensile_exclusion(const Real*);
 #define SPHARK_SPMHD_MOMENTUM_2D_3D(K) SPHARK_SPMHD_MOMENTUM(2, K<2>) SPHARK_SPMHD_MOMENTUM(3, K<3>)
 SPHARK_KERNELS(SPHARK_SPMHD_MOMENTUM_2D_3D)
 #undef SPHARK_SPMHD_MOMENTUM_2D_3D

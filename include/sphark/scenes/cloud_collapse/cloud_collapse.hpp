@@ -54,6 +54,7 @@ struct CloudCollapseParams {
   // state psi / c_h — measured worse here (docs/cloud_collapse.md)
   bool local_ch = false;
   bool tensile_correction = true;     // seed 000, eq. (9)
+  Real tensile_exclusion = 0;         // eq. (9) left out within this many r_acc of a sink (0: nowhere)
   Real courant = 0.3;
   Real force_courant = 0.25;
   GravitySolver gravity = GravitySolver::Tree;

@@ -44,6 +44,9 @@ struct SpmhdOptions {
                                 // psi / c_h (Tricco, Price & Bate 2016); false: one global c_h
 
   bool subtract_monopole_force = true;  // seed 000, eq. (9)
+  // eq. (9) left out for gas closer than this to a sink (0: applied everywhere): next to an
+  // accretion radius the field's support has a hole and h|div B|/|B| is O(1) (docs/cloud_collapse.md)
+  Real tensile_sink_exclusion = 0;
   Real alpha_visc = 1.0;        // artificial viscosity (0 = off)
   Real beta_visc = 2.0;         // signal velocity v_sig = (c_a + c_b)/2 - beta w_ab for w_ab < 0
   Real alpha_u = 1.0;           // artificial thermal conductivity (0 = off), v_sig = sqrt(|dP|/rho_ab)

@@ -162,6 +162,7 @@ class SpmhdScheme final : public OdeSystem {
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   // The pair loops over the slots `only` (ascending), or all slots when null.
   void force_pass(const Real* y, Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_forces.cpp
+  const std::uint8_t* tensile_exclusion(const Real* y);  // per slot: 1 = no eq. (9) (near a sink); nullptr: none
   void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
@@ -198,6 +199,7 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> x_;
   std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
   bool h_given_ = false;  // set by resume(): the next density solve takes h_ as the roots
+  std::vector<std::uint8_t> tensile_off_;  // tensile_exclusion
   std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
   std::vector<Real> scratch_;
   std::vector<Real> subset_scratch_;           // rhs_subset: the sink forces of all particles
