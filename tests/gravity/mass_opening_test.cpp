@@ -1,4 +1,4 @@
-// Dehnen's (2002, JCP 179, 27, eq. 13) mass-dependent opening angle: theta(M) solves
+// Dehnen's (2002, JCP 179, 27) mass-dependent opening angle: theta(M) solves
 // theta^5 / (1 - theta)^2 = theta_0^5 / (1 - theta_0)^2 (M_root / M)^(1/3) to round-off, is
 // theta_0 at the root, grows with M_root / M and stays below 1.
 #include <gtest/gtest.h>
