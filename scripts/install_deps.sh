@@ -13,7 +13,7 @@ set -euo pipefail
 
 SPHARK_PACKAGES=(cmake g++ make pkg-config
                  libsundials-dev libeigen3-dev libvtk9-dev zlib1g-dev
-                 libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
+                 libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev libhwy-dev
                  openmpi-bin libopenmpi-dev libsundials-nvecparallel-mpi6
                  python3-matplotlib python3-numpy python3-vtk9 xvfb xauth)
 APT_GET=${APT_GET:-apt-get}

@@ -2,6 +2,9 @@
 
 #include "sphark/neighbours/displacement.hpp"
 
+#include "cell_scan.hpp"
+#include "row_sort.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -76,6 +79,25 @@ void NeighbourSearch<D>::bin(std::size_t n, Real radius) {
   cell_start_[0] = 0;
 }
 
+// The positions (and squared radii) of the binned particles in cell order, one array per axis:
+// what the rows' cell scans read (cell_scan.hpp).
+template <int D>
+neighbours_detail::CellPoints<D> NeighbourSearch<D>::fill_cell_points(const Real* r2i) {
+  const std::size_t n = n_;
+  cell_points_.resize(D * n);
+  cell_r2_.resize(r2i ? n : 0);
+  for (std::size_t s = 0; s < n; ++s) {
+    const std::uint32_t j = cell_particles_[s];
+    for (int k = 0; k < D; ++k) cell_points_[k * n + s] = points_[D * j + k];
+    if (r2i) cell_r2_[s] = r2i[j];
+  }
+  neighbours_detail::CellPoints<D> c{};
+  for (int k = 0; k < D; ++k) c.x[k] = cell_points_.data() + k * n;
+  c.r2 = r2i ? cell_r2_.data() : nullptr;
+  c.particle = cell_particles_.data();
+  return c;
+}
+
 template <int D>
 void NeighbourSearch<D>::check_build(std::size_t n, Real radius) const {
   if (!(radius > 0)) throw std::invalid_argument("NeighbourSearch::build: radius must be positive");
@@ -93,18 +115,17 @@ void NeighbourSearch<D>::check_build(std::size_t n, Real radius) const {
 template <int D>
 std::size_t NeighbourSearch<D>::capacity() const {
   std::size_t c = points_.capacity() + list_.offsets.capacity() + list_.indices.capacity() + radius2_.capacity() +
+                  cell_points_.capacity() + cell_r2_.capacity() +
                   cell_of_.capacity() + cell_start_.capacity() + cell_particles_.capacity();
   for (const auto& t : thread_lists_) c += t.capacity();
   return c;
 }
 
-// Appends particle i's neighbours to `out`: those within r2max (or, with r2i, the larger of the
-// two particles' squared radii), ascending in key (or in index).
+// The slot ranges of the cells next to particle i's cell (its own included; wrapped when periodic):
+// the cells adjacent along axis 0 are consecutive in slot order, so each row of the stencil along
+// axis 0 is one range unless it wraps. Returns how many ranges.
 template <int D>
-void NeighbourSearch<D>::append_row(std::size_t i, const MinimumImage<D>& image, Real r2max, const Real* r2i,
-                                    const std::uint32_t* key, std::vector<std::uint32_t>& out) const {
-  const std::size_t row_start = out.size();
-  // the distinct cells next to i's cell along each axis (wrapped when periodic)
+int NeighbourSearch<D>::stencil_ranges(std::size_t i, std::array<SlotRange, kStencilRows * 3>& ranges) const {
   std::array<std::array<std::size_t, 3>, D> near{};
   std::array<int, D> count{};
   std::size_t ci = cell_of_[i];
@@ -122,22 +143,14 @@ void NeighbourSearch<D>::append_row(std::size_t i, const MinimumImage<D>& image,
     }
     count[k] = m;
   }
+  int n = 0;
   std::array<int, D> idx{};
   while (true) {
     std::size_t cell = 0;
     for (int k = D - 1; k >= 0; --k) cell = cell * cells_[k] + near[k][idx[k]];
-    // branch-free append: write every candidate, advance only for the hits
-    const std::uint32_t s0 = cell_start_[cell], s1 = cell_start_[cell + 1];
-    std::size_t pos = out.size();
-    out.resize(pos + (s1 - s0));
-    for (std::uint32_t s = s0; s < s1; ++s) {
-      const std::uint32_t j = cell_particles_[s];
-      const Real d2 = image(points_.data() + D * i, points_.data() + D * j).squaredNorm();
-      const Real reach2 = r2i ? std::max(r2i[i], r2i[j]) : r2max;
-      out[pos] = j;
-      pos += (d2 < reach2) & (j != i);
-    }
-    out.resize(pos);
+    const SlotRange r{cell_start_[cell], cell_start_[cell + 1]};
+    if (idx[0] > 0 && near[0][idx[0]] == near[0][idx[0] - 1] + 1) ranges[n - 1].end = r.end;  // the next cell along axis 0
+    else ranges[n++] = r;
     int k = 0;
     for (; k < D; ++k) {
       if (++idx[k] < count[k]) break;
@@ -145,11 +158,30 @@ void NeighbourSearch<D>::append_row(std::size_t i, const MinimumImage<D>& image,
     }
     if (k == D) break;
   }
-  // ascending: a deterministic summation order
-  if (key)
-    std::sort(out.begin() + row_start, out.end(), [key](std::uint32_t p, std::uint32_t q) { return key[p] < key[q]; });
-  else
-    std::sort(out.begin() + row_start, out.end());
+  return n;
+}
+
+// Appends particle i's neighbours to out[len ...) (grown when the candidates need room): those
+// within r2max (or, with r2i, the larger of the two particles' squared radii), ascending in key
+// (or in index). Returns the new length.
+template <int D>
+std::size_t NeighbourSearch<D>::append_row(std::size_t i, const MinimumImage<D>& image, Real r2max, const Real* r2i,
+                                           const std::uint32_t* key, const neighbours_detail::CellPoints<D>& cells,
+                                           neighbours_detail::ScanCell<D> scan, std::vector<std::uint32_t>& out,
+                                           std::size_t len) const {
+  std::array<SlotRange, kStencilRows * 3> ranges;
+  const int n = stencil_ranges(i, ranges);
+  std::size_t candidates = 0;
+  for (int r = 0; r < n; ++r) candidates += ranges[r].end - ranges[r].begin;
+  if (out.size() < len + candidates) out.resize(std::max(len + candidates, 2 * out.size()));
+  const Real r2_i = r2i ? r2i[i] : r2max;
+  const Real* xi = points_.data() + D * i;
+  std::uint32_t* const row = out.data() + len;
+  std::uint32_t* end = row;
+  for (int r = 0; r < n; ++r)
+    end = scan(cells, ranges[r].begin, ranges[r].end, xi, r2_i, static_cast<std::uint32_t>(i), image, end);
+  neighbours_detail::sort_row(row, end, key);  // ascending: a deterministic summation order
+  return len + static_cast<std::size_t>(end - row);
 }
 
 // The offsets from the row lengths, then each thread's rows copied to their place in the list.
@@ -162,7 +194,8 @@ void NeighbourSearch<D>::join_rows(const std::vector<std::uint32_t>* rows, int t
   list_.indices.resize(pairs);
 #pragma omp parallel for schedule(static, 1)
   for (int t = 0; t < team; ++t)
-    std::copy(rows[t].begin(), rows[t].end(), list_.indices.begin() + list_.offsets[n * t / team]);
+    std::copy(rows[t].begin(), rows[t].begin() + static_cast<std::ptrdiff_t>(list_.offsets[n * (t + 1) / team] - list_.offsets[n * t / team]),
+              list_.indices.begin() + static_cast<std::ptrdiff_t>(list_.offsets[n * t / team]));
 }
 
 template <int D>
@@ -191,6 +224,8 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
     for (std::size_t i = 0; i < n; ++i) radius2_[i] = std::min(radii[i], radius) * std::min(radii[i], radius);
   }
   const Real* r2i = radii ? radius2_.data() : nullptr;
+  const neighbours_detail::CellPoints<D> cells = fill_cell_points(r2i);
+  const neighbours_detail::ScanCell<D> scan = neighbours_detail::scan_cell_for_this_cpu<D>();
   std::vector<std::uint32_t>* rows = thread_lists_.data();
   int team = 1;
 #pragma omp parallel
@@ -200,12 +235,11 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
     team = nt;
     // Contiguous chunk per thread: the rows of a thread are consecutive in the final list.
     const std::size_t first = n * t / nt, last = n * (t + 1) / nt;
-    std::vector<std::uint32_t>& out = rows[t];
-    out.clear();
+    std::size_t len = 0;
     for (std::size_t i = first; i < last; ++i) {
-      const std::size_t row_start = out.size();
-      append_row(i, image, r2max, r2i, key, out);
-      list_.offsets[i + 1] = out.size() - row_start;
+      const std::size_t row_start = len;
+      len = append_row(i, image, r2max, r2i, key, cells, scan, rows[t], len);
+      list_.offsets[i + 1] = len - row_start;
     }
   }
   join_rows(rows, team);

@@ -3,9 +3,12 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "sphark/neighbours/neighbour_search.hpp"
+#include "sphark/simd/dispatch.hpp"
 
 #include "../support/random_points.hpp"
 
@@ -194,4 +197,53 @@ TEST(NeighbourSearch, RenumberKeepsTheListsOfTheRenamedParticles) {
     const auto& L = ns.list();
     ASSERT_EQ(std::vector<std::uint32_t>(L.indices.begin() + L.begin(i), L.indices.begin() + L.end(i)), expect) << i;
   }
+}
+
+// The cell scan's vector path (AVX2 where the CPU has it) lists the same pairs in the same order
+// as the x86-64 baseline path: open and periodic axes, one radius and per-particle radii.
+TEST(NeighbourSearch, ListsIndependentOfTheVectorPath) {
+  const auto x = random_points<3>(2000, 23);
+  std::vector<Real> radii(2000);
+  for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = 0.08 + 0.07 * std::abs(std::sin(1.3 * i));
+  PeriodicBox<3> b;
+  b.periodic = {true, false, true};
+  const PairLoopSimd widest = widest_pair_loop_simd(), saved = pair_loop_simd();
+  for (const Real* r : {static_cast<const Real*>(nullptr), static_cast<const Real*>(radii.data())}) {
+    use_pair_loop_simd(PairLoopSimd::Sse2);
+    NeighbourSearch<3> base(b);
+    base.build(x.data(), 2000, 0.15, nullptr, r);
+    use_pair_loop_simd(widest);
+    NeighbourSearch<3> wide(b);
+    wide.build(x.data(), 2000, 0.15, nullptr, r);
+    EXPECT_EQ(base.list().offsets, wide.list().offsets);
+    EXPECT_EQ(base.list().indices, wide.list().indices);
+    EXPECT_GT(wide.list().pairs(), 2000u * 20);
+    if (!r) expect_matches_brute_force(wide, x, 0.15);
+  }
+  use_pair_loop_simd(saved);
+}
+
+// With keys, each row ascends in key: rows shorter than the vectorised sort's threshold (2D) and
+// longer (3D, ~100 per row) against brute force sorted by key.
+template <int D>
+void expect_rows_ascending_in_key(std::size_t n, Real r, std::size_t min_mean_row) {
+  const auto x = random_points<D>(n, 29 + D);
+  std::vector<std::uint32_t> key(n);
+  for (std::size_t i = 0; i < n; ++i) key[i] = static_cast<std::uint32_t>((i * 7919u) % n);  // a permutation (n prime to 7919)
+  NeighbourSearch<D> ns;
+  ns.build(x.data(), n, r, key.data());
+  const auto& L = ns.list();
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<std::uint32_t> expect;
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i && ns.separation(x.data(), i, j).norm() < r) expect.push_back(static_cast<std::uint32_t>(j));
+    std::sort(expect.begin(), expect.end(), [&](std::uint32_t p, std::uint32_t q) { return key[p] < key[q]; });
+    ASSERT_EQ(std::vector<std::uint32_t>(L.indices.begin() + L.begin(i), L.indices.begin() + L.end(i)), expect) << i;
+  }
+  EXPECT_GE(L.pairs(), min_mean_row * n);
+}
+
+TEST(NeighbourSearch, KeyedRowsAscendInKey) {
+  expect_rows_ascending_in_key<2>(1000, 0.08, 15);   // ~20 per row: std::sort
+  expect_rows_ascending_in_key<3>(1500, 0.3, 90);    // ~170 per row: the vectorised sort
 }

@@ -21,6 +21,14 @@
 
 namespace sphark {
 
+namespace neighbours_detail {  // the build's cell scan (src/neighbours/cell_scan.hpp)
+template <int D>
+struct CellPoints;
+template <int D>
+using ScanCell = std::uint32_t* (*)(const CellPoints<D>&, std::uint32_t, std::uint32_t, const Real*, Real, std::uint32_t,
+                                    const MinimumImage<D>&, std::uint32_t*);
+}  // namespace neighbours_detail
+
 // Neighbours of particle i are indices[offsets[i] .. offsets[i+1]), sorted ascending, never i.
 struct NeighbourList {
   std::vector<std::size_t> offsets;
@@ -84,8 +92,15 @@ class NeighbourSearch {
   // an allocation), one particle's row, the thread rows joined into list_.
   void check_build(std::size_t n, Real radius) const;
   std::size_t capacity() const;
-  void append_row(std::size_t i, const MinimumImage<D>& image, Real r2max, const Real* r2i, const std::uint32_t* key,
-                  std::vector<std::uint32_t>& out) const;
+  neighbours_detail::CellPoints<D> fill_cell_points(const Real* r2i);
+  struct SlotRange {
+    std::uint32_t begin, end;
+  };
+  static constexpr int kStencilRows = D == 1 ? 1 : D == 2 ? 3 : 9;  // 3^(D-1)
+  int stencil_ranges(std::size_t i, std::array<SlotRange, kStencilRows * 3>& ranges) const;
+  std::size_t append_row(std::size_t i, const MinimumImage<D>& image, Real r2max, const Real* r2i, const std::uint32_t* key,
+                         const neighbours_detail::CellPoints<D>& cells, neighbours_detail::ScanCell<D> scan,
+                         std::vector<std::uint32_t>& out, std::size_t len) const;
   void join_rows(const std::vector<std::uint32_t>* rows, int team);
 
   std::optional<PeriodicBox<D>> box_;
@@ -98,11 +113,12 @@ class NeighbourSearch {
   std::array<std::size_t, D> cells_{};
   Vec<D> origin_ = Vec<D>::Zero(), side_ = Vec<D>::Ones();
   std::vector<std::uint32_t> cell_of_, cell_start_, cell_particles_;
-  std::vector<std::vector<std::uint32_t>> thread_lists_;  // per-thread rows, capacity kept
+  std::vector<std::vector<std::uint32_t>> thread_lists_;  // per-thread rows (their size: room, not length), kept
   std::vector<std::uint32_t> inverse_, swap_u32_;         // renumber() scratch
   std::vector<std::size_t> swap_offsets_;
   std::vector<Real> swap_points_;
   std::vector<Real> radius2_;  // per-particle squared radii of the last build (if given)
+  std::vector<Real> cell_points_, cell_r2_;  // build scratch: positions (one array per axis) and r2 in cell order
   long allocations_ = 0;
 };
 
