@@ -2,8 +2,9 @@
 // The inner loop of the neighbour-list build (neighbour_search.cpp): the particles of one cell
 // tested against particle i, the hits appended. The cell's particles are read from the build's
 // cell-ordered copy of the positions (one contiguous array per axis, CellPoints), so that the
-// distance test runs over consecutive memory in vector lanes: first the test of a chunk of
-// candidates into flags (a loop the compiler vectorises), then the hits compacted.
+// distance test runs over consecutive memory in vector lanes: on the AVX2 path four candidates at
+// a time, the hits' indices appended by one shuffle of the comparison's mask; on the baseline
+// path the test of a chunk into flags (a loop the compiler vectorises), then a branch-free append.
 //
 // The same lists on every path: the squared distance is (dx dx + dy dy) + dz dz in that order,
 // rounded per operation (the vector paths are compiled without FMA, so nothing is contracted),
