@@ -75,7 +75,9 @@ TEST(TensileExclusion, OnlyTheParticlesInsideTheRadiusChange) {
     inside += in;
     for (int k = 0; k < 3; ++k) {
       const std::size_t i = L.offset(Field::Velocity) + 3 * p + k;
-      if (!in) EXPECT_EQ(a.ydot[i], b.ydot[i]) << p;
+      if (!in) {
+        EXPECT_EQ(a.ydot[i], b.ydot[i]) << p;
+      }
       changed += in && a.ydot[i] != b.ydot[i];
     }
   }

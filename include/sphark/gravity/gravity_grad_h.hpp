@@ -47,4 +47,12 @@ inline Vec<3> grad_h_gravity_pair(Real G, Real m_b, const Vec<3>& x_ab, Real r_a
   return (-0.5 * G * m_b * f) * x_ab;
 }
 
+// The same with each particle's f_over_r_scale (kernels.hpp) given: bit for bit the value above.
+template <class K>
+inline Vec<3> grad_h_gravity_pair(Real G, Real m_b, const Vec<3>& x_ab, Real r_ab, Real h_a, Real h_b, Real zo_a,
+                                  Real zo_b, Real scale_a, Real scale_b) {
+  const Real f = zo_a * K::f_over_r_scaled(r_ab, h_a, scale_a) + zo_b * K::f_over_r_scaled(r_ab, h_b, scale_b);
+  return (-0.5 * G * m_b * f) * x_ab;
+}
+
 }  // namespace sphark

@@ -43,7 +43,11 @@ struct RadialKernel {
   static constexpr Real norm(Real h) { return Shape::template sigma<D>() / kernel_detail::ipow(h, D); }
   static Real w(Real r, Real h) { return norm(h) * Shape::f(r / h); }
   static Real dw_dr(Real r, Real h) { return norm(h) / h * Shape::df(r / h); }
-  static Real f_over_r(Real r, Real h) { return norm(h) / (h * h) * Shape::df_over_q(r / h); }
+  static Real f_over_r(Real r, Real h) { return f_over_r_scaled(r, h, f_over_r_scale(h)); }
+  // f_over_r in two factors, the first a particle's own (a loop over its neighbours computes it
+  // once): f_over_r(r, h) = f_over_r_scaled(r, h, f_over_r_scale(h)), bit for bit.
+  static Real f_over_r_scale(Real h) { return norm(h) / (h * h); }
+  static Real f_over_r_scaled(Real r, Real h, Real scale) { return scale * Shape::df_over_q(r / h); }
 
   template <class S>
   static S unit_w(S q) { return Shape::template sigma<D>() * Shape::f_lanes(q); }

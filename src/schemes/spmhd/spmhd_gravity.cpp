@@ -28,18 +28,39 @@ void SpmhdScheme<D, K>::gravitational_zeta() {
   if constexpr (D == 3) {
     const NeighbourList& L = ns_.list();
     const Real* x = x_.data();
+    const MinimumImage<3> image(ns_.box());  // x_a - x_b as ns_.separation, without its divisions
 #pragma omp parallel for schedule(dynamic, 64)
     for (std::size_t a = 0; a < n_; ++a) {
       const Real ha = h_[a], reach2 = (K::support * ha) * (K::support * ha);
       Real sum = zeta_init<K>(ms_[a], ha);
       for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
         const std::size_t b = L.indices[k];
-        const Real r2 = ns_.separation(x, a, b).squaredNorm();
+        const Real r2 = image(x + 3 * a, x + 3 * b).squaredNorm();
         if (r2 < reach2) sum += zeta_pair<K>(ms_[b], std::sqrt(r2), ha);
       }
       zeta_over_omega_[a] = zeta_finish(sum, ha, rho_[a]) / omega_[a];
     }
   }
+}
+
+// Slot a's neighbours b (list order) that can be within support * max(h_a, h_b): a branch-free
+// pass over the row (about half of a row lies beyond, in no predictable pattern), so that the
+// pair loop after it rarely branches. Keeps every b with |x_ab| < reach, and a few just beyond.
+template <int D, class K>
+std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t a, const MinimumImage<D>& image,
+                                                    std::vector<std::uint32_t>& near) const {
+  const NeighbourList& L = ns_.list();
+  const std::size_t begin = L.begin(a), count = L.count(a);
+  if (near.size() < count) near.resize(count + count / 4);
+  const Real* x = x_.data();
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t b = L.indices[begin + k];
+    const Real reach = K::support * std::max(h_[a], h_[b]);
+    near[n] = b;
+    n += image(x + D * a, x + D * b).squaredNorm() < reach * reach * (1 + 1e-12);
+  }
+  return n;
 }
 
 template <int D, class K>
@@ -57,6 +78,9 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
     gravitational_zeta();
     const NeighbourList& L = ns_.list();
     const Real* x = x_.data();
+    const MinimumImage<3> image(ns_.box());
+    kernel_scale_.resize(n_);  // each particle's f_over_r_scale, once instead of once per pair
+    for (std::size_t a = 0; a < n_; ++a) kernel_scale_[a] = K::f_over_r_scale(h_[a]);
     Real* dv_dt = ydot + layout_.offset(Field::Velocity);
     const Real G = opt_.G;
     const std::size_t rows = only ? only->size() : n_;
@@ -65,12 +89,15 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
       const std::size_t a = only ? (*only)[i] : i;
       const Real ha = h_[a];
       Vec<3> acc = Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * perm_[a]);
-      for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
-        const std::size_t b = L.indices[k];
-        const Vec<3> x_ab = ns_.separation(x, a, b);
+      thread_local std::vector<std::uint32_t> near;  // the row's entries that may be within reach
+      const std::size_t n_near = entries_within_reach(a, image, near);
+      for (std::size_t e = 0; e < n_near; ++e) {  // in list order, as before the filter
+        const std::size_t b = near[e];
+        const Vec<3> x_ab = image(x + 3 * a, x + 3 * b);
         const Real r = x_ab.norm(), reach = K::support * std::max(ha, h_[b]);
         if (r >= reach || r == 0) continue;
-        acc += grad_h_gravity_pair<K>(G, ms_[b], x_ab, r, ha, h_[b], zeta_over_omega_[a], zeta_over_omega_[b]);
+        acc += grad_h_gravity_pair<K>(G, ms_[b], x_ab, r, ha, h_[b], zeta_over_omega_[a], zeta_over_omega_[b],
+                                      kernel_scale_[a], kernel_scale_[b]);
       }
       Eigen::Map<Vec<3>>(dv_dt + 3 * perm_[a]) += acc;
     }
@@ -94,6 +121,7 @@ Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
 
 #define SPHARK_SPMHD_GRAVITY(D, K)                          \
   template void SpmhdScheme<D, K>::gravitational_zeta();   \
+  template std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t, const MinimumImage<D>&, std::vector<std::uint32_t>&) const; \
   template void SpmhdScheme<D, K>::gravity_pass(Real*, const std::vector<std::uint32_t>*); \
   template Real SpmhdScheme<D, K>::force_time_step(const Real*) const; \
   template Real SpmhdScheme<D, K>::force_step(std::size_t, const Real*) const;

@@ -230,6 +230,8 @@ class SpmhdScheme final : public OdeSystem {
   std::optional<BarotropicEos> eos_;  // opt_.barotropic
   std::unique_ptr<SelfGravity> gravity_;
   std::vector<Real> gravity_x_, gravity_h_, gravity_acc_, gravity_potential_, zeta_over_omega_;
+  std::vector<Real> kernel_scale_;  // K::f_over_r_scale(h) per slot (gravity_pass)
+  std::size_t entries_within_reach(std::size_t a, const MinimumImage<D>& image, std::vector<std::uint32_t>& near) const;
   GravitySources gravity_sources() const { return {gravity_x_.data(), m_.data(), gravity_h_.data(), n_}; }
   SinkGasGravity<K> sink_gas_;          // sink-gas gravity (opt_.sink_particles)
   std::vector<Real> sink_acc_, gas_from_sinks_, sink_potential_;
