@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs missing Debian packages, builds (Release) and runs the whole test suite with ctest:
-# 8.5 minutes on 2 cores from a fresh clone with the packages in place (CI runs this).
+# 10 minutes on 2 cores from a fresh clone with the packages in place (CI runs this).
 #
 # A sanitizer pass (AddressSanitizer + UndefinedBehaviorSanitizer, Debug with asserts at -O1, in
 # build-asan/; any report fails its test) follows when SPHARK_SANITIZER_PASS asks for it:
