@@ -149,7 +149,8 @@ int NeighbourSearch<D>::stencil_ranges(std::size_t i, std::array<SlotRange, kSte
     std::size_t cell = 0;
     for (int k = D - 1; k >= 0; --k) cell = cell * cells_[k] + near[k][idx[k]];
     const SlotRange r{cell_start_[cell], cell_start_[cell + 1]};
-    if (idx[0] > 0 && near[0][idx[0]] == near[0][idx[0] - 1] + 1) ranges[n - 1].end = r.end;  // the next cell along axis 0
+    const bool next_along_axis0 = idx[0] > 0 && near[0][idx[0]] == near[0][idx[0] - 1] + 1;
+    if (next_along_axis0) ranges[n - 1].end = r.end;
     else ranges[n++] = r;
     int k = 0;
     for (; k < D; ++k) {
@@ -193,9 +194,10 @@ void NeighbourSearch<D>::join_rows(const std::vector<std::uint32_t>* rows, int t
   if (pairs > list_.indices.capacity()) list_.indices.reserve(pairs + pairs / 8);  // headroom for later builds
   list_.indices.resize(pairs);
 #pragma omp parallel for schedule(static, 1)
-  for (int t = 0; t < team; ++t)
-    std::copy(rows[t].begin(), rows[t].begin() + static_cast<std::ptrdiff_t>(list_.offsets[n * (t + 1) / team] - list_.offsets[n * t / team]),
-              list_.indices.begin() + static_cast<std::ptrdiff_t>(list_.offsets[n * t / team]));
+  for (int t = 0; t < team; ++t) {  // thread t's rows: rows[t][0 .. its rows' length)
+    const std::size_t first = list_.offsets[n * t / team], end = list_.offsets[n * (t + 1) / team];
+    std::copy_n(rows[t].begin(), end - first, list_.indices.begin() + static_cast<std::ptrdiff_t>(first));
+  }
 }
 
 template <int D>

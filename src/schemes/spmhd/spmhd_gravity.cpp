@@ -76,7 +76,6 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
     }
     potential_energy_ = gravity_->compute(gravity_sources(), gravity_acc_.data(), gravity_potential_.data());
     gravitational_zeta();
-    const NeighbourList& L = ns_.list();
     const Real* x = x_.data();
     const MinimumImage<3> image(ns_.box());
     kernel_scale_.resize(n_);  // each particle's f_over_r_scale, once instead of once per pair
@@ -121,7 +120,8 @@ Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
 
 #define SPHARK_SPMHD_GRAVITY(D, K)                          \
   template void SpmhdScheme<D, K>::gravitational_zeta();   \
-  template std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t, const MinimumImage<D>&, std::vector<std::uint32_t>&) const; \
+  template std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t, const MinimumImage<D>&,            \
+                                                                std::vector<std::uint32_t>&) const;            \
   template void SpmhdScheme<D, K>::gravity_pass(Real*, const std::vector<std::uint32_t>*); \
   template Real SpmhdScheme<D, K>::force_time_step(const Real*) const; \
   template Real SpmhdScheme<D, K>::force_step(std::size_t, const Real*) const;

@@ -52,7 +52,9 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
     for (int k = 0; k < 3; ++k) bo[3 * a + k] = B_[3 * a + k] / (omega_[a] * rho_[a] * rho_[a]);
   std::vector<Real> h_power(n_);  // h^(D+2) per slot, once instead of once per pair
   for (std::size_t a = 0; a < n_; ++a) h_power[a] = std::pow(h_[a], D + 2);
-  const auto gradient_factor = [&](std::size_t a, Real r) { return K::unit_f_over_r(r / h_[a], h_[a] / r) / h_power[a]; };
+  const auto gradient_factor = [&](std::size_t a, Real r) {
+    return K::unit_f_over_r(r / h_[a], h_[a] / r) / h_power[a];
+  };
   const std::uint8_t* off = tensile_exclusion(y);
   for (std::size_t a = 0; a < n_; ++a) {  // slots, serial: a fixed summation order
     if (off && off[a]) continue;
