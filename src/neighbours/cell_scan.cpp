@@ -44,14 +44,30 @@ inline std::uint32_t* scan(const CellPoints<D>& c, std::uint32_t s0, std::uint32
   return out;
 }
 
+// Scan<D, PerParticleRadius, Periodic>::run for the case at hand (one radius or each particle's;
+// a periodic axis or none).
+template <int D, template <int, bool, bool> class Scan>
+inline std::uint32_t* scan_case(const CellPoints<D>& c, std::uint32_t s0, std::uint32_t s1, const Real* xi, Real r2_i,
+                                std::uint32_t i, const MinimumImage<D>& image, std::uint32_t* out) {
+  if (c.r2)
+    return image.periodic ? Scan<D, true, true>::run(c, s0, s1, xi, r2_i, i, image, out)
+                          : Scan<D, true, false>::run(c, s0, s1, xi, r2_i, i, image, out);
+  return image.periodic ? Scan<D, false, true>::run(c, s0, s1, xi, r2_i, i, image, out)
+                        : Scan<D, false, false>::run(c, s0, s1, xi, r2_i, i, image, out);
+}
+
+template <int D, bool PerParticleRadius, bool Periodic>
+struct BaselineScan {
+  static std::uint32_t* run(const CellPoints<D>& c, std::uint32_t s0, std::uint32_t s1, const Real* xi, Real r2_i,
+                            std::uint32_t i, const MinimumImage<D>& image, std::uint32_t* out) {
+    return scan<D, PerParticleRadius, Periodic>(c, s0, s1, xi, r2_i, i, image, out);
+  }
+};
+
 template <int D>
 std::uint32_t* scan_baseline(const CellPoints<D>& c, std::uint32_t s0, std::uint32_t s1, const Real* xi, Real r2_i,
                              std::uint32_t i, const MinimumImage<D>& image, std::uint32_t* out) {
-  if (c.r2)
-    return image.periodic ? scan<D, true, true>(c, s0, s1, xi, r2_i, i, image, out)
-                          : scan<D, true, false>(c, s0, s1, xi, r2_i, i, image, out);
-  return image.periodic ? scan<D, false, true>(c, s0, s1, xi, r2_i, i, image, out)
-                        : scan<D, false, false>(c, s0, s1, xi, r2_i, i, image, out);
+  return scan_case<D, BaselineScan>(c, s0, s1, xi, r2_i, i, image, out);
 }
 
 #if defined(__GNUC__) && defined(__x86_64__)
@@ -90,16 +106,21 @@ __attribute__((target("avx2"), always_inline)) inline std::uint32_t* scan4(const
   return scan<D, PerParticleRadius, Periodic>(c, s, s1, xi, r2_i, i, image, out);
 }
 
+template <int D, bool PerParticleRadius, bool Periodic>
+struct Avx2Scan {
+  __attribute__((target("avx2"))) static std::uint32_t* run(
+      const CellPoints<D>& c, std::uint32_t s0, std::uint32_t s1, const Real* xi, Real r2_i, std::uint32_t i,
+      const MinimumImage<D>& image, std::uint32_t* out) {
+    return scan4<D, PerParticleRadius, Periodic>(c, s0, s1, xi, r2_i, i, image, out);
+  }
+};
+
 template <int D>
 __attribute__((target("avx2"), flatten)) std::uint32_t* scan_avx2(const CellPoints<D>& c, std::uint32_t s0,
                                                                    std::uint32_t s1, const Real* xi, Real r2_i,
                                                                    std::uint32_t i, const MinimumImage<D>& image,
                                                                    std::uint32_t* out) {
-  if (c.r2)
-    return image.periodic ? scan4<D, true, true>(c, s0, s1, xi, r2_i, i, image, out)
-                          : scan4<D, true, false>(c, s0, s1, xi, r2_i, i, image, out);
-  return image.periodic ? scan4<D, false, true>(c, s0, s1, xi, r2_i, i, image, out)
-                        : scan4<D, false, false>(c, s0, s1, xi, r2_i, i, image, out);
+  return scan_case<D, Avx2Scan>(c, s0, s1, xi, r2_i, i, image, out);
 }
 #endif
 }  // namespace

@@ -43,7 +43,6 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
                  Eigen::Map<const Vec<3>>(scratch_.data() + layout_.offset(Species::Sink, Field::Velocity) + 3 * k);
   }
   if (!opt_.subtract_monopole_force) return m;
-  const NeighbourList& L = ns_.list();
   const MinimumImage<D> image(ns_.box());
   // B / (Omega rho^2) and the force pass's kernel gradient (spmhd_pair_row.hpp): f_over_r(r, h)
   // = unit_f_over_r(r / h, h / r) / h^(D+2)
@@ -56,16 +55,16 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
     return K::unit_f_over_r(r / h_[a], h_[a] / r) / h_power[a];
   };
   const std::uint8_t* off = tensile_exclusion(y);
+  std::vector<std::uint32_t> near;
   for (std::size_t a = 0; a < n_; ++a) {  // slots, serial: a fixed summation order
     if (off && off[a]) continue;
     Real S = 0;  // eq. (9)'s symmetric divergence
     const Eigen::Map<const Vec<D>> oB_a(&bo[3 * a]);
-    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
-      const std::size_t b = L.indices[k];
+    const std::size_t n_near = entries_within_reach(a, image, near);  // list order, as gravity_pass
+    for (std::size_t e = 0; e < n_near; ++e) {
+      const std::size_t b = near[e];
       const Vec<D> x_ab = image(x_.data() + D * a, x_.data() + D * b);
-      const Real r2 = x_ab.squaredNorm(), reach = K::support * std::max(h_[a], h_[b]);
-      if (r2 >= reach * reach * (1 + 1e-12)) continue;  // surely beyond; no square root for it
-      const Real r = std::sqrt(r2);
+      const Real r = x_ab.norm(), reach = K::support * std::max(h_[a], h_[b]);
       if (r >= reach || r == 0) continue;
       const Vec<D> g_a = gradient_factor(a, r) * x_ab, g_b = gradient_factor(b, r) * x_ab;
       S += mhd::monopole_term(ms_[b], oB_a, g_a, Eigen::Map<const Vec<D>>(&bo[3 * b]), g_b);
