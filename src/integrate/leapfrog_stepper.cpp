@@ -32,6 +32,8 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "collective_checks.hpp"
 #include "sphark/core/profile.hpp"
@@ -43,6 +45,7 @@ namespace {
 
 constexpr int kMaxHalvings = 10;     // retries of one step after recoverable RHS failures
 constexpr int kMaxRootIterations = 100;
+constexpr std::size_t kParallelEntries = 16384;  // shorter segments: one thread (no fork cost)
 
 bool crossed(Real before, Real after) {
   return (before < 0 && after >= 0) || (before > 0 && after <= 0);
@@ -126,14 +129,34 @@ class LeapfrogStepper final : public Stepper {
   std::vector<Real> carried_data() const override { return started_ && !failed_ ? dy_ : std::vector<Real>{}; }
 
  private:
+  // The entries outside the position block (kicked by KDK) and outside both the position and the
+  // velocity block (drifted by leapfrog-rev), as contiguous [begin, end) segments.
   void mark_blocks() {
-    const std::size_t p0 = system_.position_offset(), np = system_.position_size();
-    const std::size_t v0 = system_.velocity_offset();
-    is_position_.assign(n_, false);
-    is_velocity_.assign(n_, false);
-    for (std::size_t k = 0; k < n_; ++k) {
-      is_position_[k] = k >= p0 && k < p0 + np;
-      is_velocity_[k] = k >= v0 && k < v0 + np;
+    const Segment pos{system_.position_offset(), system_.position_offset() + system_.position_size()};
+    const Segment vel{system_.velocity_offset(), system_.velocity_offset() + system_.position_size()};
+    not_position_ = complement({pos}, n_);
+    not_position_or_velocity_ = complement({pos, vel}, n_);
+  }
+
+  using Segment = std::pair<std::size_t, std::size_t>;
+  static std::vector<Segment> complement(std::vector<Segment> blocks, std::size_t n) {
+    std::sort(blocks.begin(), blocks.end());
+    std::vector<Segment> out;
+    std::size_t from = 0;
+    for (const auto& [b, e] : blocks) {
+      if (b > from) out.push_back({from, std::min(b, n)});
+      from = std::max(from, e);
+    }
+    if (from < n) out.push_back({from, n});
+    return out;
+  }
+
+  // f(k) for every k of the segments, k in parallel (element-wise: the same result on any thread count).
+  template <class F>
+  static void for_each_entry(const std::vector<Segment>& segments, F&& f) {
+    for (const auto& [b, e] : segments) {
+#pragma omp parallel for schedule(static) if (e - b > kParallelEntries)
+      for (std::size_t k = b; k < e; ++k) f(k);
     }
   }
 
@@ -191,44 +214,58 @@ class LeapfrogStepper final : public Stepper {
 
   // One KDK step of length dt from (t_, y_, dy_) into (y_new_, dy_new_). Returns the RHS code.
   int step_kdk(Real dt) {
-    for (std::size_t k = 0; k < n_; ++k)
-      if (!is_position_[k]) y_new_[k] = y_[k] + 0.5 * dt * dy_[k];  // kick
+    const Real* y = y_.data();
+    const Real* dy = dy_.data();
+    Real* y_new = y_new_.data();
+    Real* pred = pred_.data();
     const std::size_t p0 = system_.position_offset(), v0 = system_.velocity_offset();
-    for (std::size_t i = 0; i < system_.position_size(); ++i)
-      y_new_[p0 + i] = y_[p0 + i] + dt * y_new_[v0 + i];  // drift
-    for (std::size_t k = 0; k < n_; ++k)
-      pred_[k] = is_position_[k] ? y_new_[k] : y_new_[k] + 0.5 * dt * dy_[k];  // predictor
+    for_each_entry(not_position_, [=](std::size_t k) {
+      y_new[k] = y[k] + 0.5 * dt * dy[k];         // kick
+      pred[k] = y_new[k] + 0.5 * dt * dy[k];      // predictor
+    });
+    for_each_entry({{0, system_.position_size()}}, [=](std::size_t i) {
+      y_new[p0 + i] = y[p0 + i] + dt * y_new[v0 + i];  // drift
+      pred[p0 + i] = y_new[p0 + i];
+    });
     const Real t1 = t_ + dt;
-    const int code = call("rhs", t1, [&] { return system_.rhs(t1, pred_.data(), dy_new_.data()); });
+    const int code = call("rhs", t1, [&] { return system_.rhs(t1, pred, dy_new_.data()); });
     if (code != 0) return code;
-    for (std::size_t k = 0; k < n_; ++k)
-      if (!is_position_[k]) y_new_[k] += 0.5 * dt * dy_new_[k];  // kick
+    const Real* dy_new = dy_new_.data();
+    for_each_entry(not_position_, [=](std::size_t k) { y_new[k] += 0.5 * dt * dy_new[k]; });  // kick
     return 0;
   }
 
   // One "leapfrog-rev" step (header): only v is kicked, x and every other entry q drift.
   int step_reversible(Real dt) {
     const std::size_t p0 = system_.position_offset(), v0 = system_.velocity_offset();
-    const std::size_t np = system_.position_size();
-    for (std::size_t i = 0; i < np; ++i) y_new_[v0 + i] = y_[v0 + i] + 0.5 * dt * dy_[v0 + i];  // kick
-    for (std::size_t k = 0; k < n_; ++k)
-      if (!is_position_[k] && !is_velocity_[k]) pred_[k] = y_[k] + 0.5 * dt * dy_[k];  // q*
-    for (std::size_t i = 0; i < np; ++i) {
-      pred_[p0 + i] = y_[p0 + i] + 0.5 * dt * y_new_[v0 + i];  // x_mid
-      pred_[v0 + i] = y_new_[v0 + i];                          // v_half
-    }
+    const std::vector<Segment> each_vector_entry{{0, system_.position_size()}};
+    const Real* y = y_.data();
+    const Real* dy = dy_.data();
+    const Real* dy_new = dy_new_.data();
+    Real* y_new = y_new_.data();
+    Real* pred = pred_.data();
+    for_each_entry(each_vector_entry, [=](std::size_t i) {
+      y_new[v0 + i] = y[v0 + i] + 0.5 * dt * dy[v0 + i];  // kick
+      pred[p0 + i] = y[p0 + i] + 0.5 * dt * y_new[v0 + i];  // x_mid
+      pred[v0 + i] = y_new[v0 + i];                         // v_half
+    });
+    for_each_entry(not_position_or_velocity_, [=](std::size_t k) { pred[k] = y[k] + 0.5 * dt * dy[k]; });  // q*
     const Real t_mid = t_ + 0.5 * dt;
-    int code = call("rhs", t_mid, [&] { return system_.rhs(t_mid, pred_.data(), dy_new_.data()); });
+    int code = call("rhs", t_mid, [&] { return system_.rhs(t_mid, pred, dy_new_.data()); });
     if (code != 0) return code;
-    for (std::size_t k = 0; k < n_; ++k)
-      if (!is_position_[k] && !is_velocity_[k]) y_new_[k] = y_[k] + dt * dy_new_[k];  // drift of q
-    for (std::size_t i = 0; i < np; ++i) y_new_[p0 + i] = y_[p0 + i] + dt * y_new_[v0 + i];  // drift of x
-    std::copy(y_new_.begin(), y_new_.end(), pred_.begin());
-    for (std::size_t i = 0; i < np; ++i) pred_[v0 + i] += 0.5 * dt * dy_[v0 + i];  // predictor of v
+    for_each_entry(not_position_or_velocity_, [=](std::size_t k) {
+      y_new[k] = y[k] + dt * dy_new[k];  // drift of q
+      pred[k] = y_new[k];
+    });
+    for_each_entry(each_vector_entry, [=](std::size_t i) {
+      y_new[p0 + i] = y[p0 + i] + dt * y_new[v0 + i];  // drift of x
+      pred[p0 + i] = y_new[p0 + i];
+      pred[v0 + i] = y_new[v0 + i] + 0.5 * dt * dy[v0 + i];  // predictor of v
+    });
     const Real t1 = t_ + dt;
-    code = call("rhs", t1, [&] { return system_.rhs(t1, pred_.data(), dy_new_.data()); });
+    code = call("rhs", t1, [&] { return system_.rhs(t1, pred, dy_new_.data()); });
     if (code != 0) return code;
-    for (std::size_t i = 0; i < np; ++i) y_new_[v0 + i] += 0.5 * dt * dy_new_[v0 + i];  // kick
+    for_each_entry(each_vector_entry, [=](std::size_t i) { y_new[v0 + i] += 0.5 * dt * dy_new[v0 + i]; });  // kick
     return 0;
   }
 
@@ -361,7 +398,7 @@ class LeapfrogStepper final : public Stepper {
   Real t_;
   Real t_lost_ = 0;  // Kahan compensation of t_
   std::vector<Real> y_, dy_, y_new_, dy_new_, pred_, g_, g_new_;
-  std::vector<bool> is_position_, is_velocity_;
+  std::vector<Segment> not_position_, not_position_or_velocity_;
   std::vector<int> roots_;
   StepperStats stats_;
   std::string failure_, callback_error_;

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <random>
 
 #include "sphark/scenes/cleaning_disc/cleaning_disc.hpp"
@@ -47,6 +49,18 @@ struct DiscCase {
     o.sigma = sigma;
     o.fixed_ch = 1.0;
     return o;
+  }
+  // min_a min(C h_a / c_f,a, C_h h_a / c_h), C_h = 0 meaning C (fixed particles, P = 0)
+  Real expected_step(Real cleaning_courant) const {
+    const Real C = scheme.options().courant, C_h = cleaning_courant > 0 ? cleaning_courant : C;
+    const auto& B = scheme.magnetic_field();
+    Real dt = std::numeric_limits<Real>::infinity();
+    for (std::size_t a = 0; a < p.size(); ++a) {
+      const Real h = scheme.h()[a], rho = scheme.rho()[a];
+      const Real c_f = std::sqrt((B[3 * a] * B[3 * a] + B[3 * a + 1] * B[3 * a + 1] + B[3 * a + 2] * B[3 * a + 2]) / rho);
+      dt = std::min({dt, C * h / c_f, C_h * h / scheme.cleaning_speed()});
+    }
+    return dt;
   }
   EnergyRate energy_rate() const {
     const StateLayout& L = scheme.layout();
@@ -111,6 +125,25 @@ TEST(SpmhdCleaning, OvercleaningKeepsEnergyConservationAndScalesTheSpeed) {
   // The time step respects the overcleaned speed: C h_min / c_h (fixed particles: no v term).
   const Real hmin = *std::min_element(d.scheme.h().begin(), d.scheme.h().end());
   EXPECT_DOUBLE_EQ(d.scheme.max_stable_dt(0, d.y.data(), nullptr), d.scheme.options().courant * hmin / 4.0);
+}
+
+// The cleaning wave's own Courant number C_h: dt = min_a min(C h_a / c_f,a, C_h h_a / c_h) (fixed
+// particles: no |v| term; P = 0: c_f,a = |B_a| / sqrt(rho_a)); C_h = 0 and C_h = C both give the
+// single criterion C h / max(c_f, c_h) bit for bit.
+TEST(SpmhdCleaning, CleaningCourantNumberSetsTheCleaningWavesStep) {
+  auto stable_dt = [](Real cleaning_courant) {
+    SpmhdOptions o = DiscCase::options(Cleaning::Constrained, 0.3, 4.0);
+    o.cleaning_courant = cleaning_courant;
+    DiscCase c(o);
+    return std::pair{c.scheme.max_stable_dt(0, c.y.data(), nullptr), c.expected_step(cleaning_courant)};
+  };
+  const auto [dt_default, expected_default] = stable_dt(0);
+  EXPECT_EQ(dt_default, stable_dt(SpmhdOptions{}.courant).first);
+  EXPECT_DOUBLE_EQ(dt_default, expected_default);
+  const auto [dt_wide, expected_wide] = stable_dt(4.0);  // C_h = 4: the wave criterion binds somewhere
+  EXPECT_DOUBLE_EQ(dt_wide, expected_wide);
+  EXPECT_GT(dt_wide, 2 * dt_default);
+  EXPECT_THROW(stable_dt(-0.1), std::invalid_argument);
 }
 
 // Per-particle c_h,a = f |B_a|/sqrt(rho_a) (fixed particles: P = 0), the state holding psi/c_h

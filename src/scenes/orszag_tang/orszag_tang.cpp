@@ -61,6 +61,7 @@ SpmhdOptions orszag_tang_options(const std::string& v, const OrszagTangParams& p
     o.sigma = p.sigma;
     o.overclean = p.overclean;
     o.local_ch = p.local_ch;
+    o.cleaning_courant = p.cleaning_courant;
   }
   o.skin = p.skin;
   o.h_initial = o.eta * std::sqrt(1.0 / (static_cast<Real>(p.nx) * hexagonal_rows(p.nx)));

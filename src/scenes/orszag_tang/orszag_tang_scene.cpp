@@ -96,6 +96,10 @@ void OrszagTangScene::add_options(OptionParser& p) {
              "per-particle c_h = overclean x own fast speed, psi/c_h evolved (Tricco, Price & Bate 2016)");
   p.add("--courant", &params_.courant, "Courant number C of dt = C h / max(v_sig, c_h), every variant",
         Range{0.01, 1.0});
+  p.add("--cleaning-courant", &params_.cleaning_courant,
+        "cleaning variants: the cleaning wave's own Courant number C_h, dt = min(C h / v_sig, C_h h / (c_h + 3|v|)); "
+        "0 = C (docs/spmhd.md, stability limit)",
+        Range{0.0, 2.0});
 }
 
 std::vector<std::string> OrszagTangScene::run_names() const {
@@ -118,6 +122,7 @@ std::string OrszagTangScene::scene_text(const std::string& variant) const {
   append_key_value(text, "alpha_b", params_.alpha_b);
   append_key_value(text, "overclean", params_.overclean);
   append_key_value(text, "courant", params_.courant);
+  if (params_.cleaning_courant > 0) append_key_value(text, "cleaning_courant", params_.cleaning_courant);
   append_key_value(text, "local_ch", params_.local_ch ? 1.0 : 0.0);
   return text;
 }

@@ -57,6 +57,8 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   if (!(opt_.eta > 0)) throw std::invalid_argument("SpmhdScheme: eta must be > 0");
   if (opt_.sigma < 0) throw std::invalid_argument("SpmhdScheme: sigma must be >= 0");
   if (!(opt_.overclean >= 1)) throw std::invalid_argument("SpmhdScheme: overclean must be >= 1");
+  if (!(opt_.cleaning_courant >= 0 && std::isfinite(opt_.cleaning_courant)))
+    throw std::invalid_argument("SpmhdScheme: cleaning_courant must be finite and >= 0 (0: the Courant number)");
   if (opt_.evolve_particles) {
     layout_.add(Field::Position, D).add(Field::Velocity, D);
     if (!opt_.barotropic) layout_.add(Field::InternalEnergy, 1);
@@ -290,13 +292,17 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) {
 
 template <int D, class K>
 Real SpmhdScheme<D, K>::courant_step(std::size_t a, const Real* v) {
-  Real vsig = std::max(cleaning_speeds_[a], fast_speed_[a]);
-  if (v) vsig += (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm();
-  if (!std::isfinite(vsig) || !std::isfinite(fast_speed_[a]) || !std::isfinite(h_[a])) {
+  const Real flow = v ? (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm() : 0;
+  const Real wave_vsig = fast_speed_[a] + flow, cleaning_vsig = cleaning_speeds_[a] + flow;
+  if (!std::isfinite(wave_vsig) || !std::isfinite(cleaning_vsig) || !std::isfinite(h_[a])) {
     error_ = "max_stable_dt: non-finite signal speed or h at particle " + std::to_string(perm_[a]);
     return std::numeric_limits<Real>::quiet_NaN();
   }
-  return vsig > 0 ? opt_.courant * h_[a] / vsig : std::numeric_limits<Real>::infinity();
+  // C h / (max(c_f, c_h) + flow) when both Courant numbers are C (rounding is monotonic)
+  const Real c_h_courant = opt_.cleaning_courant > 0 ? opt_.cleaning_courant : opt_.courant;
+  const Real dt_wave = wave_vsig > 0 ? opt_.courant * h_[a] / wave_vsig : std::numeric_limits<Real>::infinity();
+  const Real dt_cleaning = cleaning_vsig > 0 ? c_h_courant * h_[a] / cleaning_vsig : std::numeric_limits<Real>::infinity();
+  return std::min(dt_wave, dt_cleaning);
 }
 
 template <int D, class K>

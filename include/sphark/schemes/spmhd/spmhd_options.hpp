@@ -53,6 +53,9 @@ struct SpmhdOptions {
   Real alpha_b = 0.0;           // artificial resistivity, seed 000 eq. (10) (0 = off)
 
   Real courant = 0.3;           // for max_stable_dt: C h / v_sig
+  // The cleaning wave's own Courant number: max_stable_dt = min(C h / (c_f + (1 + beta) |v|),
+  // C_h h / (c_h + (1 + beta) |v|)); 0 = C (then the one criterion C h / (max(c_f, c_h) + (1 + beta) |v|)).
+  Real cleaning_courant = 0;
 
   // Self-gravity (3D): kernel softening with each particle's own h and the grad-h term (Price &
   // Monaghan 2007; gravity/), isolated boundaries even in a periodic box (no Ewald sum).
