@@ -19,6 +19,24 @@ std::vector<std::size_t> particles_in(const StateLayout::FieldSlot& f, std::size
     }
   return particles;
 }
+
+// The entries k of [begin, end) with bad(y[k]), ascending. A counting pass first, in parallel and
+// without a branch per entry (the common case: none); the list only when there are some.
+template <class Bad>
+void append_where(const Real* y, std::size_t begin, std::size_t end, Bad bad, std::vector<std::size_t>& out) {
+  std::size_t count = 0;
+#pragma omp parallel for simd schedule(static) reduction(+ : count) if (end - begin > 32768)
+  for (std::size_t k = begin; k < end; ++k) count += bad(y[k]) ? 1 : 0;
+  if (count == 0) return;
+  for (std::size_t k = begin; k < end; ++k)
+    if (bad(y[k])) out.push_back(k);
+}
+
+// Not finite: NaN or +-inf (|v| <= max is false for both), a comparison the compiler vectorises.
+struct NotFinite {
+  bool operator()(Real v) const { return !(std::abs(v) <= std::numeric_limits<Real>::max()); }
+};
+constexpr NotFinite not_finite;
 }  // namespace
 
 std::string describe_entries(const StateLayout& layout, const std::vector<std::size_t>& entries,
@@ -47,9 +65,9 @@ std::vector<std::size_t> nonphysical_entries(const StateLayout& layout, const Re
   for (const auto& block : layout.species())
     for (const auto& f : block.fields) {
       const std::size_t end = f.offset + block.count * static_cast<std::size_t>(f.components);
-      const bool density = f.field == Field::Density, energy = f.field == Field::InternalEnergy;
-      for (std::size_t k = f.offset; k < end; ++k)
-        if (!std::isfinite(y[k]) || (density && !(y[k] > 0)) || (energy && y[k] < 0)) bad.push_back(k);
+      if (f.field == Field::Density) append_where(y, f.offset, end, [](Real v) { return !(v > 0) || not_finite(v); }, bad);
+      else if (f.field == Field::InternalEnergy) append_where(y, f.offset, end, [](Real v) { return !(v >= 0) || not_finite(v); }, bad);
+      else append_where(y, f.offset, end, not_finite, bad);
     }
   return bad;
 }
@@ -73,8 +91,7 @@ int GuardedSystem::fail(Real t, const std::string& what, const std::vector<std::
 
 int GuardedSystem::check(Real t, const Real* out, std::size_t n, const char* what) {
   std::vector<std::size_t> bad;
-  for (std::size_t k = 0; k < n; ++k)
-    if (!std::isfinite(out[k])) bad.push_back(k);
+  append_where(out, 0, n, not_finite, bad);
   return bad.empty() ? 0 : fail(t, std::string("non-finite ") + what, bad);
 }
 

@@ -61,6 +61,7 @@ SpmhdOptions cloud_collapse_options(const CloudCollapseParams& p, const CloudNum
   }
   if (p.variant == "cleaning+resistivity") o.alpha_b = p.alpha_b;
   o.courant = p.courant;
+  o.cleaning_courant = p.cleaning_courant;
   o.force_courant = p.force_courant;
   enable_self_gravity(o, p.gravity, p.theta, p.opening);
   o.G = 1;

@@ -50,6 +50,8 @@ void CloudCollapseScene::add_options(OptionParser& p) {
   p.add("--tensile-exclusion", &params_.tensile_exclusion,
         "leave out the correction (9) for gas within this many accretion radii of a sink (0: nowhere)", Range{0, 100});
   p.add("--courant", &params_.courant, "Courant number of dt = C h / v_sig", Range{0.01, 1});
+  p.add("--cleaning-courant", &params_.cleaning_courant,
+        "the cleaning wave's own Courant number C_h: dt <= C_h h / (c_h + 3|v|), 0 = the Courant number", Range{0.0, 2.0});
   p.add("--gravity", &gravity_, "gravity solver", OneOf{{"tree", "direct"}});
   p.add("--theta", &params_.theta, "tree opening angle (the root's with --opening mass; default 0.5 fixed, 0.35 mass)",
         Range{0.05, 0.95});
@@ -107,6 +109,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   append_key_value(text, "local_ch", params_.local_ch ? 1.0 : 0.0);
   append_key_value(text, "tensile_correction", params_.tensile_correction ? 1.0 : 0.0);
   append_key_value(text, "courant", params_.courant);
+  if (params_.cleaning_courant > 0) append_key_value(text, "cleaning_courant", params_.cleaning_courant);
   append_key_value(text, "gravity", gravity_);
   append_key_value(text, "theta", params_.theta);
   if (params_.tensile_exclusion > 0) append_key_value(text, "tensile_exclusion", params_.tensile_exclusion);

@@ -55,6 +55,7 @@ class OrszagTangStudyScene final : public StudyScene {
     params_.sigma = 0.3;
     params_.overclean = 1;  // c_h = the fastest wave speed
     params_.courant = 1.0;  // max_stable_dt = h / v_sig: the CFL unit
+    params_.cleaning_courant = 0;  // the same C for the cleaning wave: h / max(v_sig, c_h)
     probe_ = std::make_unique<OrszagTang>("cleaning", params_);
     ny_ = probe_->ny;
     cfl_unit_ = probe_->scheme.max_stable_dt(0, probe_->y0.data(), nullptr);

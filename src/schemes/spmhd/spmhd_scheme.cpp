@@ -291,18 +291,23 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) {
 }
 
 template <int D, class K>
-Real SpmhdScheme<D, K>::courant_step(std::size_t a, const Real* v) {
+Real SpmhdScheme<D, K>::finite_courant_step(std::size_t a, const Real* v) const {
   const Real flow = v ? (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm() : 0;
   const Real wave_vsig = fast_speed_[a] + flow, cleaning_vsig = cleaning_speeds_[a] + flow;
-  if (!std::isfinite(wave_vsig) || !std::isfinite(cleaning_vsig) || !std::isfinite(h_[a])) {
-    error_ = "max_stable_dt: non-finite signal speed or h at particle " + std::to_string(perm_[a]);
+  if (!std::isfinite(wave_vsig) || !std::isfinite(cleaning_vsig) || !std::isfinite(h_[a]))
     return std::numeric_limits<Real>::quiet_NaN();
-  }
   // C h / (max(c_f, c_h) + flow) when both Courant numbers are C (rounding is monotonic)
   const Real c_h_courant = opt_.cleaning_courant > 0 ? opt_.cleaning_courant : opt_.courant;
   const Real dt_wave = wave_vsig > 0 ? opt_.courant * h_[a] / wave_vsig : std::numeric_limits<Real>::infinity();
   const Real dt_cleaning = cleaning_vsig > 0 ? c_h_courant * h_[a] / cleaning_vsig : std::numeric_limits<Real>::infinity();
   return std::min(dt_wave, dt_cleaning);
+}
+
+template <int D, class K>
+Real SpmhdScheme<D, K>::courant_step(std::size_t a, const Real* v) {
+  const Real dt = finite_courant_step(a, v);
+  if (std::isnan(dt)) error_ = "max_stable_dt: non-finite signal speed or h at particle " + std::to_string(perm_[a]);
+  return dt;
 }
 
 template <int D, class K>
@@ -315,11 +320,20 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) n
     return failed;
   }
   const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
+  // courant_step is pure unless a particle's step is not finite (then it names it in error_):
+  // the minimum in parallel over finite signal speeds, the failing particle found again serially.
   Real dt = std::numeric_limits<Real>::infinity();
+  bool finite = true;
+#pragma omp parallel for schedule(static) reduction(min : dt) reduction(&& : finite)
   for (std::size_t a = 0; a < n_; ++a) {
-    const Real dt_a = courant_step(a, v);
-    if (std::isnan(dt_a)) return failed;
+    const Real dt_a = finite_courant_step(a, v);
+    finite = finite && !std::isnan(dt_a);
     dt = std::min(dt, dt_a);
+  }
+  if (!finite) {
+    for (std::size_t a = 0; a < n_; ++a)
+      if (std::isnan(courant_step(a, v))) break;  // sets error_
+    return failed;
   }
   if (opt_.self_gravity) {  // the force criterion, with the accelerations of ydot or of f(t, y)
     if (!ydot) {

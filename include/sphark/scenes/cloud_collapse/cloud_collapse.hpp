@@ -56,6 +56,7 @@ struct CloudCollapseParams {
   bool tensile_correction = true;     // seed 000, eq. (9)
   Real tensile_exclusion = 0;         // eq. (9) left out within this many r_acc of a sink (0: nowhere)
   Real courant = 0.3;
+  Real cleaning_courant = 0;          // the cleaning wave's own C_h (0 = courant; SpmhdOptions::cleaning_courant)
   Real force_courant = 0.25;
   GravitySolver gravity = GravitySolver::Tree;
   Real theta = kDefaultFixedTheta;    // tree opening angle (the root's with the mass-dependent opening)

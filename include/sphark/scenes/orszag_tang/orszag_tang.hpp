@@ -32,7 +32,7 @@ struct OrszagTangParams {
   Real alpha_b = 1.0;      // artificial resistivity of the resistivity variants
   Real overclean = 8.0;    // cleaning variants: c_h = overclean x max fast speed (docs/spmhd.md)
   Real courant = 0.3;      // every variant: dt = C h / max(v_sig, c_h)
-  Real cleaning_courant = 0;  // cleaning variants: the cleaning wave's own C_h (0 = C; SpmhdOptions)
+  Real cleaning_courant = 0.45;  // cleaning variants: the cleaning wave's own C_h (0 = C); measured stable to 0.6 (docs/spmhd.md)
   bool local_ch = false;   // per-particle c_h (Tricco, Price & Bate 2016)
   Real skin = SpmhdOptions{}.skin;  // Verlet skin in units of h (results do not depend on it)
 };

@@ -170,7 +170,8 @@ class SpmhdScheme final : public OdeSystem {
   Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
   Real force_step(std::size_t slot, const Real* ydot) const;  // force_courant sqrt(h / |dv/dt|) of one slot
   // C h / v_sig of one slot (+inf without a signal speed; NaN, with error_, for a non-finite one)
-  Real courant_step(std::size_t slot, const Real* v);
+  Real courant_step(std::size_t slot, const Real* v);  // finite_courant_step; a NaN named in error_
+  Real finite_courant_step(std::size_t slot, const Real* v) const;  // NaN where a speed or h is not finite
 
   // The per-slot array `slots` (comps per particle) in particle order, cached per RHS.
   struct ParticleOrderCache {
