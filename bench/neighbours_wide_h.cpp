@@ -42,6 +42,39 @@ constexpr int kScenes = 9;
 constexpr Real kCentral[kScenes] = {1, 1, 1, 1, 1, 1e2, 1e4, 1e5, 1e7};  // central / edge density
 constexpr Real kAmbient[kScenes] = {0, 2, 4, 8, 30, 30, 30, 30, 30};    // edge / ambient density (0: none)
 
+// The Morton (Z-order) permutation of the points x (D per point) in [lo, lo + extent)^D, `bits`
+// bits per axis.
+template <int D>
+std::vector<std::uint32_t> morton_order(const std::vector<Real>& x, Real lo, Real extent, int bits) {
+  const std::size_t n = x.size() / D;
+  std::vector<std::uint64_t> code(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    std::uint64_t c = 0;
+    for (int k = 0; k < D; ++k) {
+      const Real u = std::clamp((x[D * a + k] - lo) / extent, 0.0, 0.999999);
+      const auto q = static_cast<std::uint64_t>(u * static_cast<Real>(std::uint64_t{1} << bits));
+      for (int b = 0; b < bits; ++b) c |= ((q >> b) & 1u) << (D * b + k);
+    }
+    code[a] = c;
+  }
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t a = 0; a < n; ++a) order[a] = static_cast<std::uint32_t>(a);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) { return code[p] < code[q]; });
+  return order;
+}
+
+// The points (D per point) and radii in the order `order`, with their largest radius.
+template <int D>
+Scene in_order(const std::vector<Real>& x, const std::vector<Real>& radii, const std::vector<std::uint32_t>& order) {
+  Scene t;
+  for (std::uint32_t a : order) {
+    t.x.insert(t.x.end(), x.begin() + D * a, x.begin() + D * (a + 1));
+    t.radii.push_back(radii[a]);
+  }
+  t.r_max = *std::max_element(t.radii.begin(), t.radii.end());
+  return t;
+}
+
 Scene make_scene(int scenario) {
   const std::size_t n_sphere = 100000;
   const Real C = kCentral[scenario];
@@ -75,26 +108,8 @@ Scene make_scene(int scenario) {
     }
   }
   // a spatial order (Morton, 2^10 per axis), as the scheme renumbers its particles
-  const std::size_t n = s.radii.size();
-  std::vector<std::uint64_t> code(n);
-  for (std::size_t a = 0; a < n; ++a) {
-    std::uint64_t c = 0;
-    for (int k = 0; k < 3; ++k) {
-      const auto q = static_cast<std::uint64_t>(std::clamp((s.x[3 * a + k] + 2) / 4, 0.0, 0.999999) * 1024);
-      for (int b = 0; b < 10; ++b) c |= ((q >> b) & 1u) << (3 * b + k);
-    }
-    code[a] = c;
-  }
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t a = 0; a < n; ++a) order[a] = static_cast<std::uint32_t>(a);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) { return code[p] < code[q]; });
-  Scene t;
-  for (std::uint32_t a : order) {
-    t.x.insert(t.x.end(), {s.x[3 * a], s.x[3 * a + 1], s.x[3 * a + 2]});
-    t.radii.push_back(s.radii[a]);
-  }
-  t.r_max = *std::max_element(t.radii.begin(), t.radii.end());
-  return t;
+  const std::vector<std::uint32_t> order = morton_order<3>(s.x, -2, 4, 10);
+  return in_order<3>(s.x, s.radii, order);
 }
 
 const Scene& scene(int k) {
@@ -160,22 +175,28 @@ void BM_Grid(benchmark::State& state) {
   state.counters["grid_candidates_per_particle"] = grid_candidates(s);
 }
 
+// Times search's builds of the lists of (x, radii), after checking once that they are the cell
+// grid's (grid: a NeighbourSearch over the same box).
+template <class Search, class Grid>
+void time_builds(benchmark::State& state, Search& search, Grid& grid, const std::vector<Real>& x,
+                 const std::vector<Real>& radii, Real r_max) {
+  const std::size_t n = radii.size();
+  search.build(x.data(), n, r_max, nullptr, radii.data());
+  grid.build(x.data(), n, r_max, nullptr, radii.data());
+  if (grid.list().offsets != search.list().offsets || grid.list().indices != search.list().indices)
+    state.SkipWithError("the lists differ from the cell grid's");
+  for (auto _ : state) {
+    search.build(x.data(), n, r_max, nullptr, radii.data());
+    benchmark::DoNotOptimize(search.list().indices.data());
+  }
+}
+
 void BM_KdTree(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   const Scene& s = scene(static_cast<int>(state.range(0)));
   KdTreeNeighbourSearch<3> kd;
-  const std::size_t n = s.radii.size();
-  kd.build(s.x.data(), n, s.r_max, nullptr, s.radii.data());
-  {  // the same lists as the grid (checked once per scenario)
-    NeighbourSearch<3> ns;
-    ns.build(s.x.data(), n, s.r_max, nullptr, s.radii.data());
-    if (ns.list().offsets != kd.list().offsets || ns.list().indices != kd.list().indices)
-      state.SkipWithError("kd-tree lists differ from the cell grid's");
-  }
-  for (auto _ : state) {
-    kd.build(s.x.data(), n, s.r_max, nullptr, s.radii.data());
-    benchmark::DoNotOptimize(kd.list().indices.data());
-  }
+  NeighbourSearch<3> grid;
+  time_builds(state, kd, grid, s.x, s.radii, s.r_max);
   radius_counters(state, s, kd.list().pairs());
   state.counters["allocating_builds"] = static_cast<double>(kd.allocations());
 }
@@ -260,7 +281,71 @@ void BM_Nanoflann(benchmark::State& state) {
   radius_counters(state, s, list.pairs());
 }
 
+// 2D (session 17): the periodic unit square at density 1 with a central disc of radius 0.3 at
+// density c (h ratio sqrt(c); the Orszag-Tang vortex's late density contrast is 5-10), 10^5
+// particles, r = 2 h (1 + 0.25), h = 1.2 (m / rho)^(1/2); Morton order. Scenes c = kContrast2D[k].
+constexpr int kScenes2D = 8;
+constexpr Real kContrast2D[kScenes2D] = {1, 1.5, 2, 3, 4, 6, 9, 16};
+
+Scene make_scene_2d(int k) {
+  const Real c = kContrast2D[k], r_disc = 0.3, disc_area = kPi * r_disc * r_disc;
+  const std::size_t n = 100000;
+  const Real mass_total = (1 - disc_area) + c * disc_area, m = mass_total / static_cast<Real>(n);
+  std::mt19937_64 rng(2026 + k);
+  std::uniform_real_distribution<Real> U(0, 1);
+  std::vector<Real> x, radii;
+  const auto n_disc = static_cast<std::size_t>(c * disc_area / mass_total * static_cast<Real>(n));
+  while (radii.size() < n) {
+    const Real px = U(rng), py = U(rng);
+    const bool inside = std::hypot(px - 0.5, py - 0.5) < r_disc;
+    if (inside != (radii.size() < n_disc)) continue;  // the disc's particles first, then the rest
+    x.insert(x.end(), {px, py});
+    radii.push_back(2 * 1.25 * 1.2 * std::sqrt(m / (inside ? c : 1.0)));
+  }
+  return in_order<2>(x, radii, morton_order<2>(x, 0, 1, 16));
+}
+
+const Scene& scene_2d(int k) {
+  static std::vector<Scene> cache(kScenes2D);
+  if (cache[k].radii.empty()) cache[k] = make_scene_2d(k);
+  return cache[k];
+}
+
+PeriodicBox<2> unit_square() {
+  PeriodicBox<2> box;
+  box.lo = Vec<2>::Zero();
+  box.hi = Vec<2>::Ones();
+  box.periodic = {true, true};
+  return box;
+}
+
+void counters_2d(benchmark::State& state, const Scene& s, std::size_t pairs) {
+  const auto n = static_cast<double>(s.radii.size());
+  double q2 = 0, q3 = 0;  // mean (r_max / r_i)^2 and ^3
+  for (Real ri : s.radii) q2 += std::pow(s.r_max / ri, 2), q3 += std::pow(s.r_max / ri, 3);
+  state.counters["mean_square_ratio"] = q2 / n;
+  state.counters["mean_cube_ratio"] = q3 / n;
+  state.counters["pairs_per_particle"] = static_cast<double>(pairs) / n;
+  state.counters["ns_per_particle"] =
+      benchmark::Counter(n * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+template <class Search>
+void build_2d(benchmark::State& state) {
+  omp_set_num_threads(1);
+  const Scene& s = scene_2d(static_cast<int>(state.range(0)));
+  Search search(unit_square());
+  NeighbourSearch<2> grid(unit_square());
+  time_builds(state, search, grid, s.x, s.radii, s.r_max);
+  counters_2d(state, s, search.list().pairs());
+}
+void BM_Grid2D(benchmark::State& state) { build_2d<NeighbourSearch<2>>(state); }
+void BM_KdTree2D(benchmark::State& state) { build_2d<KdTreeNeighbourSearch<2>>(state); }
+
 }  // namespace
+
+BENCHMARK(BM_Grid2D)->ArgNames({"scene"})->DenseRange(0, kScenes2D - 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_KdTree2D)->ArgNames({"scene"})->DenseRange(0, kScenes2D - 1)->Unit(benchmark::kMillisecond);
 
 // serial (nanoflann's search is called serially here; the grid and the tree also on 2 threads)
 BENCHMARK(BM_Grid)->ArgNames({"scene", "threads"})->ArgsProduct({benchmark::CreateDenseRange(0, kScenes - 1, 1), {1}})

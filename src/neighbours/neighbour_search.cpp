@@ -268,7 +268,7 @@ void NeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order) {
   }
   std::copy(swap_points_.begin(), swap_points_.end(), points_.begin());
   std::copy(swap_offsets_.begin(), swap_offsets_.end(), list_.offsets.begin());
-  std::copy(swap_u32_.begin(), swap_u32_.end(), list_.indices.begin());
+  std::copy(swap_u32_.begin(), swap_u32_.begin() + list_.indices.size(), list_.indices.begin());  // (swap_u32_ may be longer)
   // cells: the particles of a cell, renamed (and sorted again, as bin() leaves them)
   for (auto& c : cell_particles_) c = inverse_[c];
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c)

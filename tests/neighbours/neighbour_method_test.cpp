@@ -1,4 +1,4 @@
-// The builder rule: Q = mean (r_max / r_i)^3 (1 for equal radii; the two-population closed
+// The builder rule: Q = mean (r_max / r_i)^D (1 for equal radii; the two-population closed
 // form), the grid below the crossover and the tree above, and AdaptiveNeighbourSearch giving the
 // cell grid's lists whichever it picks.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 
 using namespace sphark;
 
-TEST(NeighbourMethod, GridOverheadIsTheMeanCubedRadiusRatio) {
+TEST(NeighbourMethod, GridOverheadIsTheMeanRadiusRatioToTheDimension) {
   std::vector<Real> same(100, 0.3);
   EXPECT_DOUBLE_EQ(cell_grid_overhead(same.data(), same.size(), 0.3), 1.0);
   EXPECT_DOUBLE_EQ(cell_grid_overhead(nullptr, 100, 0.3), 1.0);
@@ -19,7 +19,12 @@ TEST(NeighbourMethod, GridOverheadIsTheMeanCubedRadiusRatio) {
   std::vector<Real> two = {0.9, 0.3, 0.3, 0.3};
   EXPECT_NEAR(cell_grid_overhead(two.data(), two.size(), 0.9), (1 + 3 * 27.0) / 4, 1e-12);
   EXPECT_EQ(choose_neighbour_method(same.data(), same.size(), 0.3), NeighbourMethod::cell_grid);
-  EXPECT_EQ(choose_neighbour_method(two.data(), two.size(), 0.9), NeighbourMethod::kd_tree);
+  EXPECT_EQ(choose_neighbour_method(two.data(), two.size(), 0.9), NeighbourMethod::kd_tree);  // 20.5 > 19
+  // in 2D the grid's overhead is the area ratio: Q = (1 + 3 * 9) / 4 = 7, below the 2D crossover
+  EXPECT_NEAR(cell_grid_overhead(two.data(), two.size(), 0.9, 2), 7.0, 1e-12);
+  EXPECT_EQ(choose_neighbour_method(two.data(), two.size(), 0.9, 2), NeighbourMethod::cell_grid);
+  std::vector<Real> far = {0.9, 0.2, 0.2, 0.2};  // Q2 = (1 + 3 * 20.25) / 4 = 15.4
+  EXPECT_EQ(choose_neighbour_method(far.data(), far.size(), 0.9, 2), NeighbourMethod::kd_tree);
   // radii above the build radius are capped, as the builders cap them
   std::vector<Real> capped = {2.0, 0.5};
   EXPECT_DOUBLE_EQ(cell_grid_overhead(capped.data(), 2, 0.5), 1.0);

@@ -182,6 +182,18 @@ TEST(NeighbourSearch, PerParticleRadiiListPairsWithinTheLargerRadius) {
   EXPECT_GT(total, 800u);
 }
 
+// Row i of `after` is row order[i] of `before`, its entries renamed (new i = old order[i]).
+static void expect_renamed_rows(const NeighbourList& before, const std::vector<std::uint32_t>& order, const NeighbourList& after) {
+  std::vector<std::uint32_t> inverse(order.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) inverse[order[i]] = i;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    std::vector<std::uint32_t> expect;
+    for (std::size_t k = before.begin(order[i]); k < before.end(order[i]); ++k) expect.push_back(inverse[before.indices[k]]);
+    ASSERT_EQ(std::vector<std::uint32_t>(after.indices.begin() + after.begin(i), after.indices.begin() + after.end(i)), expect)
+        << i;
+  }
+}
+
 TEST(NeighbourSearch, RenumberKeepsTheListsOfTheRenamedParticles) {
   const auto x = random_points<2>(500, 19);
   NeighbourSearch<2> ns;
@@ -189,14 +201,22 @@ TEST(NeighbourSearch, RenumberKeepsTheListsOfTheRenamedParticles) {
   const NeighbourList before = ns.list();
   const std::vector<std::uint32_t> order = ns.cell_order();  // new i = old order[i]
   ns.renumber(order);
-  std::vector<std::uint32_t> inverse(500);
-  for (std::uint32_t i = 0; i < 500; ++i) inverse[order[i]] = i;
-  for (std::size_t i = 0; i < 500; ++i) {
-    std::vector<std::uint32_t> expect;
-    for (std::size_t k = before.begin(order[i]); k < before.end(order[i]); ++k) expect.push_back(inverse[before.indices[k]]);
-    const auto& L = ns.list();
-    ASSERT_EQ(std::vector<std::uint32_t>(L.indices.begin() + L.begin(i), L.indices.begin() + L.end(i)), expect) << i;
-  }
+  expect_renamed_rows(before, order, ns.list());
+}
+
+// Sparse lists (fewer listed pairs than particles, e.g. smoothing lengths far too small): the
+// renumbering writes exactly the list's entries (it wrote one per particle past the end before).
+TEST(NeighbourSearch, RenumberOfSparseListsKeepsThemAndTheirLength) {
+  const auto x = random_points<2>(500, 29);
+  NeighbourSearch<2> ns;
+  ns.build(x.data(), 500, 0.02);
+  const NeighbourList before = ns.list();
+  ASSERT_LT(before.indices.size(), 500u);
+  ASSERT_GT(before.indices.size(), 0u);
+  const std::vector<std::uint32_t> order = ns.cell_order();
+  ns.renumber(order);
+  EXPECT_EQ(ns.list().indices.size(), before.indices.size());
+  expect_renamed_rows(before, order, ns.list());
 }
 
 // The cell scan's vector path (AVX2 where the CPU has it) lists the same pairs in the same order

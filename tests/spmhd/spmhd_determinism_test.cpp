@@ -140,12 +140,16 @@ TEST(SpmhdDeterminism, ResumedSchemeContinuesBitForBit) {
   const std::vector<Real> y1 = compressed(run, 0.002), y2 = compressed(run, 0.004, 2);
   run.rhs(run.y0);
   const std::vector<Real> at_checkpoint = run.rhs(y1);
-  const std::vector<Real> h = run.scheme.resume_data();
+  const std::vector<Real> data = run.scheme.resume_data();  // h, then div v and the time of h (predict_h)
+  const std::size_t n = run.scheme.h().size();
+  ASSERT_EQ(data.size(), 2 * n + 1);
+  const std::vector<Real> h(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(n));
   ASSERT_EQ(h, run.scheme.h());
+  ASSERT_EQ(std::vector<Real>(data.begin() + static_cast<std::ptrdiff_t>(n), data.end() - 1), run.scheme.div_v());
   const std::vector<Real> after = run.rhs(y2);
 
   Scene restarted;
-  restarted.scheme.resume(h);
+  restarted.scheme.resume(data);
   EXPECT_EQ(restarted.scheme.h(), h);
   expect_identical(restarted.rhs(y1), at_checkpoint);  // the given h are the roots: no Newton step
   EXPECT_EQ(restarted.scheme.h(), h);

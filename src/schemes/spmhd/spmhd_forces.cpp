@@ -174,6 +174,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
       finish_particle(sums, pa, fin, out);
     }
   }
+  h_rate_known_ = true;  // div v (of every row, or of the active ones) for predict_smoothing_lengths
   interacting_pairs_ = pairs;
   pairs_total_ += static_cast<double>(pairs);
 }

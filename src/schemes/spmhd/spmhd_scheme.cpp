@@ -92,10 +92,28 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
 }
 
 template <int D, class K>
-void SpmhdScheme<D, K>::resume(std::span<const Real> h) {
-  if (h.empty()) return;
+std::vector<Real> SpmhdScheme<D, K>::resume_data() const {
+  std::vector<Real> data = h();
+  if (opt_.predict_h && h_rate_known_) {
+    const std::vector<Real>& rate = div_v();
+    data.insert(data.end(), rate.begin(), rate.end());
+    data.push_back(t_h_);
+  }
+  return data;
+}
+
+template <int D, class K>
+void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
+  if (data.empty()) return;
+  const bool with_rate = data.size() == 2 * n_ + 1;
+  const std::span<const Real> h = with_rate ? data.first(n_) : data;
   check_resumed_smoothing_lengths(h, n_, "SpmhdScheme::resume");
   for (std::size_t s = 0; s < n_; ++s) h_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
+  if (with_rate) {
+    for (std::size_t s = 0; s < n_; ++s) divv_[s] = data[n_ + perm_[s]];
+    t_h_ = data[2 * n_];
+    h_rate_known_ = true;
+  }
   h_given_ = true;  // the next solve takes these h as its roots (spmhd_density.cpp)
   built_ = false;
   ++version_;
@@ -114,6 +132,7 @@ void SpmhdScheme<D, K>::allocate_per_particle() {
   B_.assign(3 * n_, 0);
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
+  h_rate_known_ = false;
   scratch_.assign(layout_.size(), 0);
   inv_omega_rho2_.assign(n_, 0);
   list_h_.assign(n_, 0);
@@ -183,7 +202,7 @@ void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) 
 }
 
 template <int D, class K>
-int SpmhdScheme<D, K>::prepare(const Real* y) {
+int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
   ++version_;
   const Real* x = x_.data();
   const std::uint32_t* p = perm_.data();
@@ -200,7 +219,7 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     gather(Field::Position, D, x_from_state_);
     if (!built_ || x_from_state_ != x_) {
       std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
-      if (const int rc = ensure_neighbours_and_density(x)) {
+      if (const int rc = ensure_neighbours_and_density(t, x)) {
         built_ = false;  // x_ is not what the lists and h were made for
         return rc;
       }
@@ -209,7 +228,7 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
     gather(Field::Velocity, D, v_);
     if (!opt_.barotropic) gather(Field::InternalEnergy, 1, u_);
   } else if (!built_) {
-    if (const int rc = ensure_neighbours_and_density(x)) return rc;
+    if (const int rc = ensure_neighbours_and_density(t, x)) return rc;
     p = perm_.data();
   }
   if (!psi_.empty()) gather(Field::Psi, 1, psi_);
@@ -249,10 +268,10 @@ int SpmhdScheme<D, K>::prepare(const Real* y) {
 }
 
 template <int D, class K>
-int SpmhdScheme<D, K>::rhs(Real /*t*/, const Real* y, Real* ydot) {  // may throw: the stepper's net catches
+int SpmhdScheme<D, K>::rhs(Real t, const Real* y, Real* ydot) {  // may throw: the stepper's net catches
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
-  if (const int rc = prepare(y); rc != 0) return rc;
+  if (const int rc = prepare(t, y); rc != 0) return rc;
   force_pass(y, ydot);
   if (opt_.self_gravity) gravity_pass(ydot);
   if (opt_.sink_particles) sink_pass(y, ydot);
@@ -281,8 +300,8 @@ int SpmhdScheme<D, K>::evaluate(Real t, const Real* y) noexcept {
 }
 
 template <int D, class K>
-int SpmhdScheme<D, K>::stiff_diagonal(Real /*t*/, const Real* y, Real* c) {
-  if (const int rc = prepare(y); rc != 0) return rc;
+int SpmhdScheme<D, K>::stiff_diagonal(Real t, const Real* y, Real* c) {
+  if (const int rc = prepare(t, y); rc != 0) return rc;
   std::fill(c, c + layout_.size(), 0.0);
   if (!has_stiff_diagonal()) return 0;
   Real* cpsi = c + layout_.offset(Field::Psi);
@@ -314,7 +333,7 @@ template <int D, class K>
 Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) noexcept {
   constexpr Real failed = std::numeric_limits<Real>::quiet_NaN();  // documented in the header
   try {
-    if (prepare(y) != 0) return failed;  // error_ says why
+    if (prepare(t, y) != 0) return failed;  // error_ says why
   } catch (...) {
     error_ = current_exception_message("SpmhdScheme::max_stable_dt");
     return failed;
@@ -353,7 +372,7 @@ int SpmhdScheme<D, K>::stable_steps(Real t, const Real* y, const Real* ydot, std
     if (opt_.self_gravity && !ydot) {
       if (evaluate(t, y) != 0) return 1;
       ydot = scratch_.data();
-    } else if (prepare(y) != 0) {
+    } else if (prepare(t, y) != 0) {
       return 1;
     }
     const Real* v = y + layout_.offset(Field::Velocity);

@@ -21,10 +21,10 @@
 namespace sphark {
 
 template <int D, class K>
-int SpmhdScheme<D, K>::rhs_subset(Real /*t*/, const Real* y, std::span<const std::size_t> active, Real* ydot) {
+int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) {
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
-  if (const int rc = prepare(y); rc != 0) return rc;
+  if (const int rc = prepare(t, y); rc != 0) return rc;
   std::fill(ydot, ydot + layout_.size(), 0.0);
   slot_of_.resize(n_);
   for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);

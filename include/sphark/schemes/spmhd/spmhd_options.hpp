@@ -70,6 +70,9 @@ struct SpmhdOptions {
   // between steps (sinks/sink_events.hpp).
   bool sink_particles = false;
   SinkSoftening sink_softening;
+  // The density solve starts from the last h advanced by dh/dt = h div v / D (false: from the
+  // last h). Only the initial guess: the roots agree to the solve's tolerance.
+  bool predict_h = true;
   Real skin = 0.25;             // Verlet skin: particle i lists neighbours within 2 h_i (1 + skin)
 };
 

@@ -125,9 +125,12 @@ class SpmhdScheme final : public OdeSystem {
   // depends on that start at the tolerance's round-off; the checkpoint carries it. resume_data()
   // is h() (particle order); resume(h) sets the starts (positive and finite, one per gas particle)
   // and rebuilds the lists at the next evaluation, which takes them as the roots (no Newton step:
-  // the interrupted run's rho and Omega at the checkpoint, bit for bit).
-  std::vector<Real> resume_data() const override { return h(); }
-  void resume(std::span<const Real> h) override;
+  // the interrupted run's rho and Omega at the checkpoint, bit for bit). With predict_h, after a
+  // force pass, h() is followed by div_v() and the time of h (2 N + 1 values), so that the next
+  // solve starts from the same predicted guesses as the uninterrupted run's; resume takes N
+  // values (an older checkpoint) or 2 N + 1.
+  std::vector<Real> resume_data() const override;
+  void resume(std::span<const Real> data) override;
 
   // The momentum budget of the RHS at y (diagnostics; refreshes the scheme at y, evaluate()):
   // `total` = sum_a m_a dv_a/dt over gas and sinks, and `tensile` its part from the tensile-
@@ -149,9 +152,10 @@ class SpmhdScheme final : public OdeSystem {
   int evaluate(Real t, const Real* y) noexcept;
 
  private:
-  int prepare(const Real* y);                      // neighbours, density, P, c, B, c_h
+  int prepare(Real t, const Real* y);              // neighbours, density, P, c, B, c_h
   // 0, or 1 (recoverable, error_ says why) when h cannot be solved or outgrows the box.
-  int ensure_neighbours_and_density(const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
+  int ensure_neighbours_and_density(Real t, const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
+  void predict_smoothing_lengths(Real t);  // the solve's initial guesses at t (spmhd_density.cpp)
   int build_neighbours(const Real* x);  // lists for list_h_, then slots in cell order
   struct DensityStats {
     std::size_t not_converged = 0, outside_list = 0, iterations = 0;
@@ -200,6 +204,8 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> x_;
   std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
   bool h_given_ = false;  // set by resume(): the next density solve takes h_ as the roots
+  Real t_h_ = 0;               // the time of the state h_ was solved for
+  bool h_rate_known_ = false;  // divv_ is from a force pass after the last solve (predict_smoothing_lengths)
   std::vector<std::uint8_t> tensile_off_;  // tensile_exclusion
   std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
   std::vector<Real> scratch_;
