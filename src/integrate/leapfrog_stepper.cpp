@@ -32,10 +32,10 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
-#include <utility>
 #include <vector>
 
 #include "collective_checks.hpp"
+#include "entry_segments.hpp"
 #include "sphark/core/profile.hpp"
 #include "steppers.hpp"
 #include "number_text.hpp"
@@ -45,7 +45,6 @@ namespace {
 
 constexpr int kMaxHalvings = 10;     // retries of one step after recoverable RHS failures
 constexpr int kMaxRootIterations = 100;
-constexpr std::size_t kParallelEntries = 16384;  // shorter segments: one thread (no fork cost)
 
 bool crossed(Real before, Real after) {
   return (before < 0 && after >= 0) || (before > 0 && after <= 0);
@@ -132,32 +131,10 @@ class LeapfrogStepper final : public Stepper {
   // The entries outside the position block (kicked by KDK) and outside both the position and the
   // velocity block (drifted by leapfrog-rev), as contiguous [begin, end) segments.
   void mark_blocks() {
-    const Segment pos{system_.position_offset(), system_.position_offset() + system_.position_size()};
-    const Segment vel{system_.velocity_offset(), system_.velocity_offset() + system_.position_size()};
-    not_position_ = complement({pos}, n_);
-    not_position_or_velocity_ = complement({pos, vel}, n_);
-  }
-
-  using Segment = std::pair<std::size_t, std::size_t>;
-  static std::vector<Segment> complement(std::vector<Segment> blocks, std::size_t n) {
-    std::sort(blocks.begin(), blocks.end());
-    std::vector<Segment> out;
-    std::size_t from = 0;
-    for (const auto& [b, e] : blocks) {
-      if (b > from) out.push_back({from, std::min(b, n)});
-      from = std::max(from, e);
-    }
-    if (from < n) out.push_back({from, n});
-    return out;
-  }
-
-  // f(k) for every k of the segments, k in parallel (element-wise: the same result on any thread count).
-  template <class F>
-  static void for_each_entry(const std::vector<Segment>& segments, F&& f) {
-    for (const auto& [b, e] : segments) {
-#pragma omp parallel for schedule(static) if (e - b > kParallelEntries)
-      for (std::size_t k = b; k < e; ++k) f(k);
-    }
+    const EntrySegment pos{system_.position_offset(), system_.position_offset() + system_.position_size()};
+    const EntrySegment vel{system_.velocity_offset(), system_.velocity_offset() + system_.position_size()};
+    not_position_ = segments_outside({pos}, n_);
+    not_position_or_velocity_ = segments_outside({pos, vel}, n_);
   }
 
   void start() {
@@ -238,7 +215,7 @@ class LeapfrogStepper final : public Stepper {
   // One "leapfrog-rev" step (header): only v is kicked, x and every other entry q drift.
   int step_reversible(Real dt) {
     const std::size_t p0 = system_.position_offset(), v0 = system_.velocity_offset();
-    const std::vector<Segment> each_vector_entry{{0, system_.position_size()}};
+    const std::vector<EntrySegment> each_vector_entry{{0, system_.position_size()}};
     const Real* y = y_.data();
     const Real* dy = dy_.data();
     const Real* dy_new = dy_new_.data();
@@ -398,7 +375,7 @@ class LeapfrogStepper final : public Stepper {
   Real t_;
   Real t_lost_ = 0;  // Kahan compensation of t_
   std::vector<Real> y_, dy_, y_new_, dy_new_, pred_, g_, g_new_;
-  std::vector<Segment> not_position_, not_position_or_velocity_;
+  std::vector<EntrySegment> not_position_, not_position_or_velocity_;
   std::vector<int> roots_;
   StepperStats stats_;
   std::string failure_, callback_error_;

@@ -166,6 +166,11 @@ TEST(SpmhdDeterminism, ResumeRejectsSmoothingLengthsThatDoNotFit) {
   EXPECT_THROW(sc.scheme.resume(h), std::invalid_argument);
   h[3] = std::nan("");
   EXPECT_THROW(sc.scheme.resume(h), std::invalid_argument);
+  h[3] = 0.01;
+  std::vector<Real> with_rate = h;  // h, div v, the time of h
+  with_rate.insert(with_rate.end(), n + 1, 0.0);
+  with_rate[n + 5] = std::nan("");
+  EXPECT_THROW(sc.scheme.resume(with_rate), std::invalid_argument);
   sc.scheme.resume({});  // an older checkpoint without them: the scheme keeps its own start
   Scene untouched;
   expect_identical(sc.rhs(sc.y0), untouched.rhs(untouched.y0));

@@ -108,6 +108,8 @@ void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
   const bool with_rate = data.size() == 2 * n_ + 1;
   const std::span<const Real> h = with_rate ? data.first(n_) : data;
   check_resumed_smoothing_lengths(h, n_, "SpmhdScheme::resume");
+  if (with_rate && !std::all_of(data.begin() + n_, data.end(), [](Real v) { return std::isfinite(v); }))
+    throw std::invalid_argument("SpmhdScheme::resume: a velocity divergence or the time of h is not finite");
   for (std::size_t s = 0; s < n_; ++s) h_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
   if (with_rate) {
     for (std::size_t s = 0; s < n_; ++s) divv_[s] = data[n_ + perm_[s]];
