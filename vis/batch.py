@@ -14,7 +14,9 @@ to say how many; 1: one after the other): matplotlib (and VTK, when a job render
 is imported once, then the process forks, and each worker takes the next job as it finishes
 one. The pictures are the same either way; only their order of completion changes.
 """
+import contextlib
 import importlib
+import io
 import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -74,6 +76,15 @@ def preload(todo):
         import vtk  # noqa: F401
 
 
+def run_captured(job):
+    """run(job) in a worker: (its result, what it printed on stdout, on stderr), for the parent to
+    print whole, so that the lines of jobs finishing together never interleave."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        ok = run(job)
+    return ok, out.getvalue(), err.getvalue()
+
+
 def run_all(todo, processes):
     """One result (True: the job succeeded) per job, in order."""
     processes = min(processes, len(todo))
@@ -85,9 +96,14 @@ def run_all(todo, processes):
     results = []
     # (a worker that dies, e.g. a crash inside VTK, fails its job and the ones left: no hang)
     with ProcessPoolExecutor(processes, mp_context=multiprocessing.get_context("fork")) as pool:
-        for job, future in [(j, pool.submit(run, j)) for j in todo]:
+        for job, future in [(j, pool.submit(run_captured, j)) for j in todo]:
             try:
-                results.append(future.result())
+                ok, out, err = future.result()
+                sys.stdout.write(out)
+                sys.stdout.flush()
+                sys.stderr.write(err)
+                sys.stderr.flush()
+                results.append(ok)
             except BrokenProcessPool:
                 print(f"batch.py: {job[0]}: its worker process died", file=sys.stderr)
                 results.append(False)

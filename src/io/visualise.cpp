@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cerrno>
 #include <chrono>
@@ -90,6 +91,18 @@ ProcessResult run_process(const std::vector<std::string>& argv_in, double timeou
   return {false, "killed by signal " + std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0)};
 }
 
+namespace {
+// The X display number from which `xvfb-run -a` looks for a free one: another for every call of
+// this process, and apart from other processes'. With one start for all (xvfb-run's 99), a call
+// right after another reused the display whose server was still shutting down, and that server
+// removed the new one's socket on its way out ("bad X server connection").
+std::string first_display_to_try() {
+  static std::atomic<unsigned> calls{0};
+  const unsigned call = calls++ % 64, process = static_cast<unsigned>(::getpid()) % 400;
+  return std::to_string(100 + 64 * process + call);
+}
+}  // namespace
+
 bool run_python(const std::string& script, const std::vector<std::string>& args,
                 bool needs_display, double timeout_seconds) {
   const std::filesystem::path script_path = vis_dir() / script;
@@ -103,7 +116,7 @@ bool run_python(const std::string& script, const std::vector<std::string>& args,
   if (needs_display && (!display || !*display)) {
     const std::string xvfb = on_path("xvfb-run");
     if (xvfb.empty()) return warn(script, "no $DISPLAY and xvfb-run not found");
-    argv = {xvfb, "-a"};
+    argv = {xvfb, "-n", first_display_to_try(), "-a"};  // -n first: -a starts its search from it
   }
   argv.push_back(kPython);
   argv.push_back(script_path.string());
