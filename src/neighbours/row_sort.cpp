@@ -21,22 +21,18 @@ const hwy::Sorter& sorter() {
 
 void sort_row(std::uint32_t* begin, std::uint32_t* end, const std::uint32_t* key) {
   const auto n = static_cast<std::size_t>(end - begin);
-  if (n < kVectorSortFrom) {
-    if (key)
-      std::sort(begin, end, [key](std::uint32_t p, std::uint32_t q) { return key[p] < key[q]; });
-    else
-      std::sort(begin, end);
-    return;
-  }
   if (!key) {
-    sorter()(begin, n, hwy::SortAscending());
+    if (n < kVectorSortFrom) std::sort(begin, end);
+    else sorter()(begin, n, hwy::SortAscending());
     return;
   }
-  // (key << 32) | index: ascending in key, which is distinct per particle
+  // (key << 32) | index: ascending in key, which is distinct per particle; the keys looked up
+  // once, not at every comparison
   thread_local std::vector<std::uint64_t> keyed;
   if (keyed.size() < n) keyed.resize(2 * n);
   for (std::size_t k = 0; k < n; ++k) keyed[k] = std::uint64_t{key[begin[k]]} << 32 | begin[k];
-  sorter()(keyed.data(), n, hwy::SortAscending());
+  if (n < kVectorSortFrom) std::sort(keyed.data(), keyed.data() + n);
+  else sorter()(keyed.data(), n, hwy::SortAscending());
   for (std::size_t k = 0; k < n; ++k) begin[k] = static_cast<std::uint32_t>(keyed[k]);
 }
 

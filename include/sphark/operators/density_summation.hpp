@@ -56,29 +56,41 @@ inline void density_sum(const NeighbourSearch<D>& ns, const Real* x, const Real*
   }
 }
 
+// The last iterate of solve_smoothing_length: the h at which the sums were last evaluated, the
+// sums there, and the h the Newton (or bisection) step from it gives.
+struct SmoothingLengthIterate {
+  Real h = 0, rho = 0, drho_dh = 0;
+  Real h_next = 0;
+  // rho at h_next to first order, rho + (h_next - h) drho/dh: within (h_next - h)^2 |rho''| / 2 of
+  // the sum at h_next, below round-off once |h_next - h| < tol h with tol <= 1e-8
+  Real rho_next() const { return rho + (h_next - h) * drho_dh; }
+};
+
 // seed 000, eqs. (4)-(5): the h of one particle, root of f(h) = rho(h) - m (eta/h)^D on
 // (0, h_list], by Newton-Raphson from h_start with a bisection fallback when Newton leaves the
-// bracket or stalls (> 30 iterations), to |h_new - h| < tol h. sums(h, rho, drho_dh) evaluates
-// the density sum (4) and its h-derivative at h; m_eta = m eta^D. Counts the iterations.
+// bracket or stalls (> 30 iterations), to |h_next - h| < tol h. sums(h, rho, drho_dh) evaluates
+// the density sum (4) and its h-derivative at h; m_eta = m eta^D. Counts the iterations (one sum
+// each). The root is h_next of the iterate returned: Newton's error there is of second order.
 template <int D, class Sums, class Count>
-Real solve_smoothing_length(Sums&& sums, Real h_start, Real h_list, Real m_eta, Real tol, bool& converged,
-                            Count& iterations) {
-  Real hh = std::min(h_start, h_list);
+SmoothingLengthIterate solve_smoothing_length(Sums&& sums, Real h_start, Real h_list, Real m_eta, Real tol,
+                                              bool& converged, Count& iterations) {
+  SmoothingLengthIterate it;
+  it.h_next = std::min(h_start, h_list);
   Real lo = 0, hi = h_list;  // bracket: f < 0 below the root, f > 0 above (f increasing)
   converged = false;
-  Real r = 0, dr = 0;
-  for (int it = 0; it < 100 && !converged; ++it) {
+  for (int k = 0; k < 100 && !converged; ++k) {
     ++iterations;
-    sums(hh, r, dr);
-    const Real rho_h = m_eta / std::pow(hh, D);  // seed 000, eq. (5): rho(h) = m (eta / h)^D
-    const Real f = r - rho_h, df = dr + D * rho_h / hh;
-    if (f < 0) lo = std::max(lo, hh); else hi = std::min(hi, hh);
-    Real h_new = (df > 0) ? hh - f / df : -1;
-    if (!(h_new >= lo && h_new <= hi) || it > 30) h_new = 0.5 * (lo + hi);  // bisection fallback
-    converged = std::abs(h_new - hh) < tol * hh;
-    hh = h_new;
+    it.h = it.h_next;
+    sums(it.h, it.rho, it.drho_dh);
+    const Real rho_h = m_eta / std::pow(it.h, D);  // seed 000, eq. (5): rho(h) = m (eta / h)^D
+    const Real f = it.rho - rho_h, df = it.drho_dh + D * rho_h / it.h;
+    if (f < 0) lo = std::max(lo, it.h); else hi = std::min(hi, it.h);
+    Real h_new = (df > 0) ? it.h - f / df : -1;
+    if (!(h_new >= lo && h_new <= hi) || k > 30) h_new = 0.5 * (lo + hi);  // bisection fallback
+    converged = std::abs(h_new - it.h) < tol * it.h;
+    it.h_next = h_new;
   }
-  return hh;
+  return it;
 }
 
 // Is h already a root to the tolerance of solve_smoothing_length (one Newton step from it would
@@ -163,7 +175,7 @@ DensitySolveStats solve_density(const NeighbourSearch<D>& ns, const Real* x, con
     long iterations = 0;
     Real hh = h[i];
     bool converged = i < n_given && hh <= h_list && is_smoothing_length_root<D>(sums, hh, m_eta, tol);
-    if (!converged) hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations);
+    if (!converged) hh = solve_smoothing_length<D>(sums, h[i], h_list, m_eta, tol, converged, iterations).h_next;
     Real r = 0;
     if (!converged) ++not_converged;
     if (i < n_checked && root_beyond_list<D>(sums, hh, h_list, m_eta, tol)) ++outside;

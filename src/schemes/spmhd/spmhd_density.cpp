@@ -65,6 +65,7 @@ void SpmhdScheme<D, K>::sort_slots_by_cell() {
   permute(x_, D);
   permute(h_, 1);
   permute(h_guess_, 1);
+  permute(h_eval_, 1);
   permute(ms_, 1);
   permute(list_h_, 1);
   permute(radii_, 1);
@@ -72,19 +73,20 @@ void SpmhdScheme<D, K>::sort_slots_by_cell() {
   permute(perm_, 1);  // slot indices < 2^31: exact through a double
 }
 
-// The initial guesses of the solve at t: the last h (solved at t_h_) advanced by the continuity
-// equation, dh/dt = -h/(D rho) drho/dt = h div v / D (seed 000, eqs. (5) and (25)), with the div v
-// of the last force pass. The error of the guess falls from O(dt) to O(dt^2), and the Newton
-// iteration converges in one step fewer. Only a guess: the roots do not depend on it beyond the
-// solve's tolerance; the factor is clamped to [0.8, 1.25]. Restarted h (resume) are roots at
-// t_h_ only: at another time they are predicted, and solved, as the uninterrupted run's.
+// The initial guesses of the solve at t: the last iterates h_eval_ (solved at t_h_; h_ is one
+// Newton step past them) advanced by the continuity equation, dh/dt = -h/(D rho) drho/dt =
+// h div v / D (seed 000, eqs. (5) and (25)), with the div v of the last force pass (predict_h),
+// or as they are. The error of the guess falls from O(dt) to O(dt^2), and the Newton iteration
+// converges in one step fewer. Only a guess: the roots do not depend on it beyond the solve's
+// tolerance; the factor is clamped to [0.8, 1.25]. Starting from the iterates, not from h_, a
+// restart (resume: the iterates) starts every solve where the uninterrupted run does.
 template <int D, class K>
 void SpmhdScheme<D, K>::predict_smoothing_lengths(Real t) {
-  if (!opt_.predict_h || !h_rate_known_ || !opt_.evolve_particles || !(t != t_h_)) return;
-  h_given_ = false;
-  const Real dt_over_d = (t - t_h_) / D;
+  const bool predict = opt_.predict_h && h_rate_known_ && opt_.evolve_particles && t != t_h_;
+  const Real dt_over_d = predict ? (t - t_h_) / D : 0;
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n_; ++i) h_[i] *= std::clamp(1 + dt_over_d * divv_[i], Real(0.8), Real(1.25));
+  for (std::size_t i = 0; i < n_; ++i)
+    h_[i] = predict ? h_eval_[i] * std::clamp(1 + dt_over_d * divv_[i], Real(0.8), Real(1.25)) : h_eval_[i];
 }
 
 // Verlet lists with per-particle radii R_i = support * list_h_i * (1 + skin). A pair closer than
@@ -102,6 +104,7 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
     }
     const Real volume = (hi - lo).prod();
     std::fill(h_.begin(), h_.end(), opt_.eta * std::pow(volume / static_cast<Real>(n_), 1.0 / D));
+    h_eval_ = h_;
   }
   predict_smoothing_lengths(t);
   h_guess_.assign(h_.begin(), h_.end());  // every attempt starts from the same guesses
@@ -128,7 +131,6 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
     ScopedPhase timer(Phase::DensityH);
     const DensityStats st = solve_density(x);
     if (st.outside_list == 0) {
-      h_given_ = false;
       t_h_ = t;
       if (st.not_converged == 0) return 0;
       error_ = "density: h iteration did not converge for " + std::to_string(st.not_converged) + " particle(s)";
@@ -142,6 +144,13 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
 // Solves (4)-(5) for every particle (Newton-Raphson with a bisection fallback, as
 // sphark::solve_density); h_ holds the initial guess (the previous h), list_h_served_ the largest h the
 // lists can serve.
+namespace {
+// The h solve's first candidates: neighbours within reach of 1.03 x the guess (1.03^2 = 1.06 of
+// the guess's circle in 2D; a list serves h up to (1 + skin) x its build's). Only speed depends
+// on it: an iterate beyond gathers them all.
+constexpr Real kGuessReach = 1.03;
+}  // namespace
+
 template <int D, class K>
 typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x) {
   const int threads = omp_get_max_threads();
@@ -165,28 +174,42 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
     Real* mc = rc + room;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n_; ++i) {
-      const Real h_list = list_h_served_[i], r_list2 = (K::support * h_list) * (K::support * h_list);
-      // Candidates: every listed neighbour that any trial h <= h_list can reach, in list order,
+      const Real h_list = list_h_served_[i];
+      // Candidates: every listed neighbour that a trial h <= h_reach can reach, in list order,
       // neighbour j in lane (particle number of j) mod W: entry c W + l of lane l. Each lane's
       // sum then runs over the same neighbours in the same order whatever other candidates the
-      // list holds (those add exact zeros): a reused list gives the h of a fresh one, bit for bit.
-      std::size_t count[8] = {};
-      for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
-        const std::size_t j = L.indices[k];
-        const Real r2 = image(x + D * i, x + D * j).squaredNorm();
-        if (r2 >= r_list2) continue;
-        const std::size_t l = perm_[j] & (lanes - 1), c = count[l]++ * lanes + l;  // lanes: 1, 2, 4 or 8
-        rc[c] = std::sqrt(r2);
-        mc[c] = m[j];
-      }
-      const std::size_t blocks = *std::max_element(count, count + lanes), nc = blocks * lanes;
-      for (int l = 0; l < lanes; ++l)
-        for (std::size_t c = count[l]; c < blocks; ++c) rc[c * lanes + l] = mc[c * lanes + l] = 0;
+      // list holds (those add exact zeros): a reused list gives the h of a fresh one, bit for bit,
+      // and so does any h_reach above the trial h. First h_reach = kGuessReach x the guess (the
+      // Newton iterates stay near a predicted guess; the list reaches (1 + skin) h), all of
+      // h_list when an iterate goes beyond.
+      Real h_reach = 0;
+      std::size_t nc = 0;
+      auto gather = [&](Real reach) {
+        h_reach = reach;
+        const Real r2_max = (K::support * reach) * (K::support * reach);
+        std::size_t count[8] = {};
+        for (std::size_t k = L.begin(i); k < L.end(i); ++k) {
+          const std::size_t j = L.indices[k];
+          const Real r2 = image(x + D * i, x + D * j).squaredNorm();
+          // without a branch (a third of the entries fall outside, unpredictably): every entry is
+          // written at its lane's next place, which only a candidate keeps
+          const std::size_t l = perm_[j] & (lanes - 1), c = count[l] * lanes + l;  // lanes: 1, 2, 4 or 8
+          rc[c] = std::sqrt(r2);
+          mc[c] = m[j];
+          count[l] += r2 < r2_max;
+        }
+        const std::size_t blocks = *std::max_element(count, count + lanes);
+        nc = blocks * lanes;
+        for (int l = 0; l < lanes; ++l)
+          for (std::size_t c = count[l]; c < blocks; ++c) rc[c * lanes + l] = mc[c * lanes + l] = 0;
+      };
+      gather(std::min(h_list, kGuessReach * h_[i]));
       // rho(h) and drho/dh at smoothing length hh, self term first (seed 000, eq. (4)), from the
       // unit-h shape: W = w1(q) / h^D and dW/dh = -(D W + r dW/dr) / h = -(D w1 + q^2 f1) / h^(D+1),
       // with w1 = K::unit_w(q), q^2 f1 = K::unit_q_dw(q), q = r / h (kernels.hpp). Beyond the
       // support w1 = f1 = 0.
       auto density_at = [&](Real hh, Real& rho, Real& drho_dh) {
+        if (hh > h_reach) gather(h_list);
         const Real hinv = 1.0 / hh;
         const DensitySums s = sums(rc, mc, nc, hinv, m[i]);
         Real hd = 1;
@@ -195,18 +218,18 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         drho_dh = -s.s1 * hd * hinv;
       };
       const Real m_eta = m[i] * eta_d;
+      // From h_[i]: after resume() the interrupted run's last iterate, whose sums and Newton step
+      // are then that run's, bit for bit. The root is one Newton step past the last sums, rho
+      // taken there to first order (SmoothingLengthIterate): no sum at the root itself.
       bool converged = false;
-      Real r = 0, dr = 0;
-      // After resume(): h_ is the root the interrupted run found here (density_at(h) below then gives
-      // that run's rho and Omega bit for bit), kept if it is one; a Newton step would move it.
-      Real hh = h_[i];
-      converged = h_given_ && hh <= h_list && is_smoothing_length_root<D>(density_at, hh, m_eta, tol);
-      if (!converged) hh = solve_smoothing_length<D>(density_at, h_[i], h_list, m_eta, tol, converged, iterations);
+      const SmoothingLengthIterate it =
+          solve_smoothing_length<D>(density_at, h_[i], h_list, m_eta, tol, converged, iterations);
       if (!converged) ++not_converged;
-      density_at(hh, r, dr);
+      const Real hh = it.h_next;
+      h_eval_[i] = it.h;
       h_[i] = hh;
-      rho_[i] = r;
-      omega_[i] = 1 + hh / (D * r) * dr;  // dh/drho = -h / (D rho)
+      rho_[i] = it.rho_next();
+      omega_[i] = 1 + hh / (D * rho_[i]) * it.drho_dh;  // dh/drho = -h / (D rho)
       h_max = std::max(h_max, hh);
       if (root_beyond_list<D>(density_at, hh, h_list, m_eta, tol)) {
         ++outside;

@@ -93,7 +93,7 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
 
 template <int D, class K>
 std::vector<Real> SpmhdScheme<D, K>::resume_data() const {
-  std::vector<Real> data = h();
+  std::vector<Real> data = in_particle_order(h_eval_, 1, out_h_eval_);
   if (opt_.predict_h && h_rate_known_) {
     const std::vector<Real>& rate = div_v();
     data.insert(data.end(), rate.begin(), rate.end());
@@ -110,13 +110,12 @@ void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
   check_resumed_smoothing_lengths(h, n_, "SpmhdScheme::resume");
   if (with_rate && !std::all_of(data.begin() + n_, data.end(), [](Real v) { return std::isfinite(v); }))
     throw std::invalid_argument("SpmhdScheme::resume: a velocity divergence or the time of h is not finite");
-  for (std::size_t s = 0; s < n_; ++s) h_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
+  for (std::size_t s = 0; s < n_; ++s) h_[s] = h_eval_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
   if (with_rate) {
     for (std::size_t s = 0; s < n_; ++s) divv_[s] = data[n_ + perm_[s]];
     t_h_ = data[2 * n_];
     h_rate_known_ = true;
   }
-  h_given_ = true;  // the next solve takes these h as its roots (spmhd_density.cpp)
   built_ = false;
   ++version_;
   evaluated_version_ = -1;
@@ -125,6 +124,7 @@ void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
 // Every per-particle buffer for n_ particles (h_ and x_ are set by the caller), slots = particles.
 template <int D, class K>
 void SpmhdScheme<D, K>::allocate_per_particle() {
+  h_eval_ = h_;  // no solve yet: the next starts from h_
   rho_.assign(n_, 0);
   omega_.assign(n_, 1);
   P_.assign(n_, 0);
@@ -313,7 +313,7 @@ int SpmhdScheme<D, K>::stiff_diagonal(Real t, const Real* y, Real* c) {
 
 template <int D, class K>
 Real SpmhdScheme<D, K>::finite_courant_step(std::size_t a, const Real* v) const {
-  const Real flow = v ? (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * perm_[a]).norm() : 0;
+  const Real flow = v ? (1 + opt_.beta_visc) * Eigen::Map<const Vec<D>>(v + D * a).norm() : 0;
   const Real wave_vsig = fast_speed_[a] + flow, cleaning_vsig = cleaning_speeds_[a] + flow;
   if (!std::isfinite(wave_vsig) || !std::isfinite(cleaning_vsig) || !std::isfinite(h_[a]))
     return std::numeric_limits<Real>::quiet_NaN();
@@ -340,7 +340,7 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) n
     error_ = current_exception_message("SpmhdScheme::max_stable_dt");
     return failed;
   }
-  const Real* v = opt_.evolve_particles ? y + layout_.offset(Field::Velocity) : nullptr;
+  const Real* v = opt_.evolve_particles ? v_.data() : nullptr;  // in slot order (prepare)
   // courant_step is pure unless a particle's step is not finite (then it names it in error_):
   // the minimum in parallel over finite signal speeds, the failing particle found again serially.
   Real dt = std::numeric_limits<Real>::infinity();
@@ -377,7 +377,7 @@ int SpmhdScheme<D, K>::stable_steps(Real t, const Real* y, const Real* ydot, std
     } else if (prepare(t, y) != 0) {
       return 1;
     }
-    const Real* v = y + layout_.offset(Field::Velocity);
+    const Real* v = v_.data();  // in slot order (prepare)
     courant.assign(n_, std::numeric_limits<Real>::infinity());
     force.assign(n_, std::numeric_limits<Real>::infinity());
     for (std::size_t a = 0; a < n_; ++a) {

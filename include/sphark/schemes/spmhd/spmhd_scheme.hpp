@@ -123,12 +123,13 @@ class SpmhdScheme final : public OdeSystem {
 
   // Restart (ode_system.hpp): each h solve starts Newton from the previous h, so the converged h
   // depends on that start at the tolerance's round-off; the checkpoint carries it. resume_data()
-  // is h() (particle order); resume(h) sets the starts (positive and finite, one per gas particle)
-  // and rebuilds the lists at the next evaluation, which takes them as the roots (no Newton step:
-  // the interrupted run's rho and Omega at the checkpoint, bit for bit). With predict_h, after a
-  // force pass, h() is followed by div_v() and the time of h (2 N + 1 values), so that the next
-  // solve starts from the same predicted guesses as the uninterrupted run's; resume takes N
-  // values (an older checkpoint) or 2 N + 1.
+  // is the last iterate of each solve (particle order; h() is one Newton step past it); resume(h)
+  // sets the starts (positive and finite, one per gas particle) and rebuilds the lists at the next
+  // evaluation, whose solve then repeats the interrupted run's last sums and Newton step: its h,
+  // rho and Omega at the checkpoint, bit for bit. With predict_h, after a force pass, the iterates
+  // are followed by div_v() and the time of h (2 N + 1 values), so that the next solve starts from
+  // the same predicted guesses as the uninterrupted run's; resume takes N values (an older
+  // checkpoint) or 2 N + 1.
   std::vector<Real> resume_data() const override;
   void resume(std::span<const Real> data) override;
 
@@ -173,7 +174,8 @@ class SpmhdScheme final : public OdeSystem {
   void gravitational_zeta();                       // zeta_a / Omega_a of the grad-h term
   Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
   Real force_step(std::size_t slot, const Real* ydot) const;  // force_courant sqrt(h / |dv/dt|) of one slot
-  // C h / v_sig of one slot (+inf without a signal speed; NaN, with error_, for a non-finite one)
+  // C h / v_sig of one slot, v: velocities in slot order (v_) or null (+inf without a signal speed;
+  // NaN, with error_, for a non-finite one)
   Real courant_step(std::size_t slot, const Real* v);  // finite_courant_step; a NaN named in error_
   Real finite_courant_step(std::size_t slot, const Real* v) const;  // NaN where a speed or h is not finite
 
@@ -192,7 +194,7 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> permute_scratch_;
   std::vector<Real> x_from_state_, v_, u_, psi_, alpha_;  // inputs gathered from the state (slot order)
   long version_ = 0;                                      // bumped by every prepare()
-  mutable ParticleOrderCache out_h_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_,
+  mutable ParticleOrderCache out_h_, out_h_eval_, out_rho_, out_omega_, out_P_, out_divB_, out_divv_, out_B_, out_x_,
       out_cleaning_speeds_;
   SpmhdOptions opt_;
   StateLayout layout_;
@@ -203,7 +205,6 @@ class SpmhdScheme final : public OdeSystem {
   // state's positions equal them bit for bit). Slot order, as all below.
   std::vector<Real> x_;
   std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
-  bool h_given_ = false;  // set by resume(): the next density solve takes h_ as the roots
   Real t_h_ = 0;               // the time of the state h_ was solved for
   bool h_rate_known_ = false;  // divv_ is from a force pass after the last solve (predict_smoothing_lengths)
   std::vector<std::uint8_t> tensile_off_;  // tensile_exclusion
@@ -221,6 +222,7 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> records_, inv_omega_rho2_;
   std::vector<std::uint32_t> row_scratch_;  // per thread: a row's interacting neighbours
   std::vector<Real> h_guess_;       // h at the start of the density solve
+  std::vector<Real> h_eval_;        // the last iterate of each h solve (h_ is one Newton step past it)
   // Per-particle Verlet lists: particle i's list radius is support * list_h_[i] * (1 + skin)
   // (a pair is listed if closer than the larger of its two radii); list_h_served_[i], the largest
   // h the lists serve now; list_h_needed_[i] > 0: the h the next build must serve (an h grew past
