@@ -41,7 +41,16 @@ AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_ou
       if (r->y.size() != r->layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
       layout = std::move(r->layout);
       y = std::move(r->y);
-      stepper.resize({y.data(), r->atol.empty() ? nullptr : r->atol.data(), nullptr});
+      std::vector<Real> carried;
+      if (!r->entry_source.empty()) {
+        if (r->entry_source.size() != y.size()) throw std::logic_error("after_step: a reordering of another size");
+        const std::vector<Real> old = stepper.carried_data();
+        if (old.size() == y.size()) {
+          carried.resize(y.size());
+          for (std::size_t k = 0; k < y.size(); ++k) carried[k] = old[r->entry_source[k]];
+        }
+      }
+      stepper.resize({y.data(), r->atol.empty() ? nullptr : r->atol.data(), carried.empty() ? nullptr : carried.data()});
     }
     if (st == AdvanceStatus::Reached) return st;
   }

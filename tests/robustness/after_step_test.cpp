@@ -86,7 +86,7 @@ Outcome run(const std::string& method, bool remove, const std::filesystem::path&
       const StateLayout from = sys.layout(), to = from.with_count(Species::Gas, 3);
       std::vector<Real> next = resize_species(from, y, to, Species::Gas, {1, 2, 3});  // particle 0 leaves
       sys.keep({1, 2, 3});
-      return TimeLoopHooks::Resize{to, std::move(next), {}};
+      return TimeLoopHooks::Resize{to, std::move(next), {}, {}};
     };
   const TimeLoopResult r = run_time_loop(sys, sys.layout(), o, y0, s, h);
   EXPECT_TRUE(r.ok()) << r.failure;

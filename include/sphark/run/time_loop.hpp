@@ -96,6 +96,10 @@ struct TimeLoopHooks {
     StateLayout layout;
     std::vector<Real> y;
     std::vector<Real> atol;  // per entry of the new state when the run uses per-entry tolerances
+    // A reordering (same entries, another order): new entry k is old entry entry_source[k]; the
+    // stepper's carried data (Stepper::carried_data) then moves with the entries. Empty: the
+    // stepper starts afresh at y (Stepper::resize).
+    std::vector<std::size_t> entry_source;
   };
   std::function<std::optional<Resize>(Real t, const Real* y)> after_step;
   // Optional, with after_step: on a restart, the system takes the checkpoint's species counts

@@ -112,7 +112,7 @@ std::optional<TimeLoopHooks::Resize> DropRun::after_step(Real, const Real* y) {
   if (!dist_ || ++steps_ % kMigrateEvery != 0) return std::nullopt;
   std::vector<Real> state(y, y + layout().size());
   dist_->migrate(state, nullptr, steps_ % kRepartitionEvery == 0);
-  return TimeLoopHooks::Resize{layout(), std::move(state), water_drop_absolute_tolerances(*drop_, atol_)};
+  return TimeLoopHooks::Resize{layout(), std::move(state), water_drop_absolute_tolerances(*drop_, atol_), {}};
 }
 
 DropRunSummary DropRun::summary(const TimeLoopResult& result) const {

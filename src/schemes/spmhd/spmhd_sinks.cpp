@@ -46,13 +46,17 @@ void SpmhdScheme<D, K>::change_particles(const std::vector<std::size_t>& kept, s
   if (!opt_.evolve_particles) throw std::logic_error("SpmhdScheme::change_particles: fixed particles");
   if (sinks > 0 && !opt_.sink_particles) throw std::invalid_argument("SpmhdScheme::change_particles: no sink species");
   if (kept.empty()) throw std::invalid_argument("SpmhdScheme::change_particles: no gas left");
-  const std::vector<Real> h_old = h();  // particle order
-  std::vector<Real> h_new(kept.size()), m_new(kept.size());
+  // particle order: the last iterates of the h solves and div v (the next solve's start,
+  // predict_smoothing_lengths) move with their particles
+  const std::vector<Real> h_old = in_particle_order(h_eval_, 1, out_h_eval_), divv_old = div_v();
+  std::vector<Real> h_new(kept.size()), m_new(kept.size()), divv_new(kept.size());
   for (std::size_t i = 0; i < kept.size(); ++i) {
     if (kept[i] >= n_) throw std::invalid_argument("SpmhdScheme::change_particles: particle out of range");
     h_new[i] = h_old[kept[i]];
     m_new[i] = m_[kept[i]];
+    divv_new[i] = divv_old[kept[i]];
   }
+  const bool rate_known = h_rate_known_;
   n_ = kept.size();
   m_ = std::move(m_new);
   layout_ = layout_.with_count(Species::Gas, n_);
@@ -60,6 +64,8 @@ void SpmhdScheme<D, K>::change_particles(const std::vector<std::size_t>& kept, s
   h_ = std::move(h_new);  // slots = particles until the next list build sorts them
   x_.assign(D * n_, 0);
   allocate_per_particle();
+  divv_ = std::move(divv_new);
+  h_rate_known_ = rate_known;
   built_ = false;
   ++version_;
   evaluated_version_ = -1;

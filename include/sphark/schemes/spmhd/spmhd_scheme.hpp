@@ -116,9 +116,10 @@ class SpmhdScheme final : public OdeSystem {
   // Sink particles (options().sink_particles): their count in the state.
   std::size_t sinks() const { return layout_.particles(Species::Sink); }
   // A new particle set between steps: the gas particles kept[i] (old numbering, ascending or in
-  // any order) become particles i, and the state holds `sinks` sink particles. Their h carry
-  // over as first guesses; the neighbour lists are rebuilt at the next evaluation. The caller
-  // moves the state (resize_species) and the stepper (Stepper::resize).
+  // any order) become particles i, and the state holds `sinks` sink particles. Their h (the
+  // last iterates) and div v carry over as the next solve's start; the neighbour lists are
+  // rebuilt at the next evaluation. The caller moves the state (resize_species) and the stepper
+  // (Stepper::resize). With kept a permutation: the state re-sorted.
   void change_particles(const std::vector<std::size_t>& kept, std::size_t sinks);
 
   // Restart (ode_system.hpp): each h solve starts Newton from the previous h, so the converged h
