@@ -35,7 +35,7 @@ struct OrszagTangParams {
   Real cleaning_courant = 0.45;  // cleaning variants: the cleaning wave's own C_h (0 = C); measured stable to 0.6 (docs/spmhd.md)
   bool local_ch = false;   // per-particle c_h (Tricco, Price & Bate 2016)
   Real skin = SpmhdOptions{}.skin;  // Verlet skin in units of h (results do not depend on it)
-  Real resort = 0.1;       // re-sort the state into cell order (cells 4 / nx) above this scrambled fraction
+  Real resort = 0.3;       // re-sort the state into cell order (cells 4 / nx) above this scrambled fraction
                            // (0: never; run/state_resort.hpp, docs/performance.md)
 };
 
