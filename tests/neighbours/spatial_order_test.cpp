@@ -71,13 +71,14 @@ TEST(SpatialOrder, ScrambledFractionCountsTheCellChangesBeyondTheFewest) {
 }
 
 TEST(SpatialOrder, WithoutABoxTheCellsStartAtTheBoundingBox) {
-  std::vector<Real> x = row_by_row_lattice();
-  for (Real& v : x) v += 10;  // far from the origin: the same order
+  const std::vector<Real> x = row_by_row_lattice();
+  std::vector<Real> shifted = x;
+  for (Real& v : shifted) v += 8 + 3.0 / kSide;  // exact in binary; not a whole number of cells
   const std::size_t n = x.size() / 2;
-  const std::vector<std::size_t> shifted = cell_order<2>(x.data(), n, kCell, std::nullopt);
-  // the bounding box starts half a spacing in: cells shifted by that, the same grouping of rows
-  EXPECT_EQ(shifted.size(), n);
-  EXPECT_EQ(shifted[0], 0u);
+  const std::vector<std::size_t> order = cell_order<2>(x.data(), n, kCell, std::nullopt);
+  EXPECT_EQ(cell_order<2>(shifted.data(), n, kCell, std::nullopt), order);  // translation: the same order
+  EXPECT_EQ(scrambled_fraction<2>(shifted.data(), n, kCell, std::nullopt),
+            scrambled_fraction<2>(x.data(), n, kCell, std::nullopt));
   EXPECT_THROW(cell_order<2>(x.data(), n, 0.0, std::nullopt), std::invalid_argument);
 }
 
