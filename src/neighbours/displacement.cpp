@@ -6,19 +6,24 @@
 namespace sphark {
 
 template <int D>
-Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box) {
+Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box,
+                      const std::uint32_t* order) {
   Real m2 = 0;
 #pragma omp parallel for reduction(max : m2) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    Vec<D> d = Eigen::Map<const Vec<D>>(x + D * i) - Eigen::Map<const Vec<D>>(ref + D * i);
+    const std::size_t p = order ? order[i] : i;
+    Vec<D> d = Eigen::Map<const Vec<D>>(x + D * p) - Eigen::Map<const Vec<D>>(ref + D * i);
     if (box) d = box->minimum_image(d);
     m2 = std::max(m2, d.squaredNorm());
   }
   return std::sqrt(m2);
 }
 
-template Real max_displacement<1>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<1>>&);
-template Real max_displacement<2>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<2>>&);
-template Real max_displacement<3>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<3>>&);
+template Real max_displacement<1>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<1>>&,
+                                  const std::uint32_t*);
+template Real max_displacement<2>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<2>>&,
+                                  const std::uint32_t*);
+template Real max_displacement<3>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<3>>&,
+                                  const std::uint32_t*);
 
 }  // namespace sphark

@@ -257,6 +257,7 @@ void NeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order) {
   swap_points_.resize(D * n);
   swap_offsets_.resize(n + 1);
   swap_u32_.resize(std::max(list_.indices.size(), n));
+  spans_.resize(n);
   swap_offsets_[0] = 0;
   for (std::size_t i = 0; i < n; ++i) swap_offsets_[i + 1] = swap_offsets_[i] + list_.count(order[i]);
 #pragma omp parallel for schedule(static)
@@ -264,7 +265,14 @@ void NeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order) {
     const std::size_t o = order[i];
     for (int k = 0; k < D; ++k) swap_points_[D * i + k] = points_[D * o + k];
     std::size_t w = swap_offsets_[i];
-    for (std::size_t r = list_.begin(o); r < list_.end(o); ++r) swap_u32_[w++] = inverse_[list_.indices[r]];
+    auto lo = static_cast<std::uint32_t>(i), hi = lo;
+    for (std::size_t r = list_.begin(o); r < list_.end(o); ++r) {
+      const std::uint32_t j = inverse_[list_.indices[r]];
+      swap_u32_[w++] = j;
+      lo = std::min(lo, j);
+      hi = std::max(hi, j);
+    }
+    spans_[i] = {lo, hi};
   }
   std::copy(swap_points_.begin(), swap_points_.end(), points_.begin());
   std::copy(swap_offsets_.begin(), swap_offsets_.end(), list_.offsets.begin());
@@ -291,8 +299,8 @@ void NeighbourSearch<D>::query(const Vec<D>& p, Real radius, std::vector<std::ui
 }
 
 template <int D>
-Real NeighbourSearch<D>::max_displacement_since_build(const Real* x) const {
-  return max_displacement<D>(x, points_.data(), n_, box_);
+Real NeighbourSearch<D>::max_displacement_since_build(const Real* x, const std::uint32_t* order) const {
+  return max_displacement<D>(x, points_.data(), n_, box_, order);
 }
 
 template class NeighbourSearch<1>;

@@ -2,6 +2,7 @@
 // The largest displacement of n particles from reference positions (minimum image when a box is
 // given): the Verlet-skin validity check of the neighbour searches.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 
 #include "sphark/core/types.hpp"
@@ -9,8 +10,10 @@
 
 namespace sphark {
 
-// max_i |x_i - ref_i|, both D values per particle; OpenMP-parallel.
+// max_i |x_i - ref_i|, both D values per particle; OpenMP-parallel. With `order`, x_i is the
+// position of particle order[i] of x (ref in another order than x, without a copy).
 template <int D>
-Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box);
+Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box,
+                      const std::uint32_t* order = nullptr);
 
 }  // namespace sphark

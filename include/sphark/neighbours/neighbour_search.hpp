@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "sphark/core/types.hpp"
@@ -62,6 +63,9 @@ class NeighbourSearch {
   // Renumbers the built particles: new index i is old index order[i] (a permutation of 0..n-1).
   // The lists, the stored positions and the cells follow; every row keeps its order.
   void renumber(const std::vector<std::uint32_t>& order);
+  // After renumber(): per particle i, the least and largest index in {i} and its row (the span of
+  // memory a loop over the row reads, in the new order); empty before.
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& row_spans() const { return spans_; }
 
   // The built particles in cell order (a spatial order: neighbours in space are near in it).
   const std::vector<std::uint32_t>& cell_order() const { return cell_particles_; }
@@ -80,8 +84,9 @@ class NeighbourSearch {
     return box_ ? box_->minimum_image(d) : d;
   }
 
-  // Largest |x_i - x_i(at build)| (minimum image), for the Verlet-skin validity check.
-  Real max_displacement_since_build(const Real* x) const;
+  // Largest |x_i - x_i(at build)| (minimum image), for the Verlet-skin validity check; with
+  // `order`, x_i is particle order[i] of x (x in the order before renumber(order)).
+  Real max_displacement_since_build(const Real* x, const std::uint32_t* order = nullptr) const;
 
   // Builds so far that had to enlarge a buffer (the others allocated nothing).
   long allocations() const { return allocations_; }
@@ -115,6 +120,7 @@ class NeighbourSearch {
   std::vector<std::uint32_t> cell_of_, cell_start_, cell_particles_;
   std::vector<std::vector<std::uint32_t>> thread_lists_;  // per-thread rows (their size: room, not length), kept
   std::vector<std::uint32_t> inverse_, swap_u32_;         // renumber() scratch
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spans_;  // row_spans()
   std::vector<std::size_t> swap_offsets_;
   std::vector<Real> swap_points_;
   std::vector<Real> radius2_;  // per-particle squared radii of the last build (if given)

@@ -12,6 +12,7 @@
 #include "sphark/simd/dispatch.hpp"
 #include "wcsph_halo.hpp"
 #include "wcsph_pair_rows.hpp"
+#include "wcsph_rows_in_use.hpp"
 
 namespace sphark {
 
@@ -55,13 +56,8 @@ void WcsphSystem<D, Kernel>::update_neighbours(const Real* x, std::size_t count,
   const Real skin = p_.skin_fraction * support;
   const std::size_t n = layout_.particles();
   ScopedPhase timer(Phase::Neighbours);
-  if (built_ && !force) {  // the lists hold slots: the displacement check sees the positions in slot order
-    x_slots_.resize(D * count);
-#pragma omp parallel for schedule(static)
-    for (std::size_t s = 0; s < count; ++s)
-      for (int k = 0; k < D; ++k) x_slots_[D * s + k] = x[D * slot_particle_[s] + k];
-    if (search_.max_displacement_since_build(x_slots_.data()) < 0.5 * skin) return;
-  }
+  // the lists hold slots: the displacement check reads the positions in slot order
+  if (built_ && !force && search_.max_displacement_since_build(x, slot_particle_.data()) < 0.5 * skin) return;
   // Lists of the particles (rows ascending in particle number, or key), then slots in cell
   // order: slot s is particle slot_particle_[s], and the rows keep their order (sums do not
   // depend on slots). The local particles (0 .. n) take the first slots: rows are theirs only.
@@ -75,30 +71,10 @@ void WcsphSystem<D, Kernel>::update_neighbours(const Real* x, std::size_t count,
 
 namespace {
 using wcsph_detail::ForceRow;
+using wcsph_detail::Rows;
 using wcsph_detail::RowInput;
+using wcsph_detail::rows_in_use;
 
-// The rows of the path in use (wcsph_pair_rows.hpp).
-template <int D, class K>
-struct Rows {
-  std::size_t (*inside)(const RowInput<D>&, std::size_t, std::uint32_t*);
-  Vec<D> (*gradient)(const RowInput<D>&, std::size_t, wcsph_detail::InsideRow);
-  ForceRow<D> (*forces)(const RowInput<D>&, std::size_t, wcsph_detail::InsideRow);
-};
-template <int D, class K>
-Rows<D, K> rows_in_use() {
-  using namespace wcsph_detail;
-  switch (pair_loop_simd()) {
-    case PairLoopSimd::Avx512:
-      return {neighbours_inside_avx512<D>, density_gradient_row_avx512<D, K>, force_row_avx512<D, K>};
-    case PairLoopSimd::Avx2:
-      return {neighbours_inside_avx2<D>, density_gradient_row_avx2<D, K>, force_row_avx2<D, K>};
-    case PairLoopSimd::Sse2:
-      return {neighbours_inside<simd::Real2, D>, density_gradient_row<simd::Real2, D, K>,
-              force_row<simd::Real2, D, K>};
-    case PairLoopSimd::Scalar: break;
-  }
-  return {neighbours_inside<Real, D>, density_gradient_row<Real, D, K>, force_row<Real, D, K>};
-}
 }  // namespace
 
 template <int D, class Kernel>
@@ -175,36 +151,28 @@ void WcsphSystem<D, Kernel>::prepare_rows(const wcsph_detail::ParticleFields<D>&
 }
 
 template <int D, class Kernel>
+wcsph_detail::ForceStore<D> WcsphSystem<D, Kernel>::force_store(const Real* y, Real* ydot) {
+  const StateLayout& L = layout_;
+  const bool clean = p_.cleaning;
+  return {y + L.offset(Field::Position), y + L.offset(Field::Velocity), y + L.offset(Field::Density),
+          clean ? y + L.offset(Field::Psi) : nullptr, ydot + L.offset(Field::Position),
+          ydot + L.offset(Field::Velocity), ydot + L.offset(Field::Density),
+          clean ? ydot + L.offset(Field::Psi) : nullptr, div_v_.data(), &p_.body_force, p_.cleaning_speed(),
+          p_.cleaning_rate(), p_.delta * p_.h * p_.sound_speed, clean, p_.cleaning_subsystem_only};
+}
+
+template <int D, class Kernel>
 void WcsphSystem<D, Kernel>::forces(const Real* y, Real* ydot) {
-  const auto x = vector_field<D>(y, layout_, Field::Position);
-  const auto v = vector_field<D>(y, layout_, Field::Velocity);
-  const auto rho = scalar_field(y, layout_, Field::Density);
-  auto dx = vector_field<D>(ydot, layout_, Field::Position);
-  auto dv = vector_field<D>(ydot, layout_, Field::Velocity);
-  auto drho = scalar_field(ydot, layout_, Field::Density);
-  const bool clean = p_.cleaning, subsystem = p_.cleaning_subsystem_only;
-  const Real* psi = clean ? y + layout_.offset(Field::Psi) : nullptr;
-  Real* dpsi = clean ? ydot + layout_.offset(Field::Psi) : nullptr;
   const std::size_t n = layout_.particles();
-  const Real c_h = p_.cleaning_speed(), dh_c = p_.delta * p_.h * p_.sound_speed;
   const RowInput<D> in = row_input();
   const Rows<D, Kernel> rows = rows_in_use<D, Kernel>();
+  const wcsph_detail::ForceStore<D> store = force_store(y, ydot);
   const std::uint32_t* particle = slot_particle_.data();
   ScopedPhase forces_timer(Phase::Forces);
   Real max_acc2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : max_acc2)
-  for (std::size_t a = 0; a < n; ++a) {  // slot a: particle p
-    const ForceRow<D> sums = rows.forces(in, a, inside_row(a));
-    const std::size_t p = particle[a];
-    Vec<D> acc = sums.acc;
-    div_v_[p] = -sums.continuity / rho[p];  // eq. (36)
-    if (!subsystem && p_.body_force) acc += p_.body_force(Vec<D>(x.col(p)));
-    dv.col(p) = acc;
-    dx.col(p) = subsystem ? Vec<D>::Zero() : Vec<D>(v.col(p));
-    drho[p] = subsystem ? 0.0 : sums.continuity + dh_c * sums.diffusion;  // eq. (28) + delta-SPH
-    if (clean) dpsi[p] = -c_h * c_h * rho[p] * div_v_[p] - p_.cleaning_rate() * psi[p];  // eq. (30)
-    max_acc2 = std::max(max_acc2, acc.squaredNorm());
-  }
+  for (std::size_t a = 0; a < n; ++a)  // slot a: particle particle[a]
+    max_acc2 = std::max(max_acc2, store(particle[a], rows.forces(in, a, inside_row(a))));
   max_accel_ = std::sqrt(max_acc2);
 }
 
@@ -218,8 +186,8 @@ int WcsphSystem<D, Kernel>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   const wcsph_detail::ParticleFields<D> f = wcsph_detail::state_fields<D>(y, layout_);
   const std::size_t n = layout_.particles();
   update_neighbours(f.x, n, nullptr, false);
-  prepare_rows(f, n);
-  forces(y, ydot);
+  fill_records(f, n);
+  rows_in_one_pass(y, ydot);
   evaluated_y_.assign(y, y + layout_.size());
   return 0;
 }

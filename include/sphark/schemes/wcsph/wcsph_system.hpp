@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sphark/integrate/ode_system.hpp"
@@ -37,6 +38,8 @@ struct ParticleFields;
 template <int D>
 struct RowInput;
 struct InsideRow;
+template <int D>
+struct ForceStore;
 }  // namespace wcsph_detail
 
 template <int D, class Kernel>
@@ -92,6 +95,9 @@ class WcsphSystem final : public OdeSystem {
   void prepare_rows(const wcsph_detail::ParticleFields<D>& f, std::size_t count);
   // rhs(): the force loop of the local particles into ydot.
   void forces(const Real* y, Real* ydot);
+  wcsph_detail::ForceStore<D> force_store(const Real* y, Real* ydot);  // what a force row writes
+  // Serial rhs() after fill_records: prepare_rows and forces in one pass (wcsph_one_pass.cpp).
+  void rows_in_one_pass(const Real* y, Real* ydot);
   // rhs() of a distributed system (wcsph_distributed.cpp): prepare_rows and forces with the
   // halo's exchanges; the gradients of the halo from their owners.
   int distributed_rhs(const Real* y, Real* ydot);
@@ -121,7 +127,6 @@ class WcsphSystem final : public OdeSystem {
   // Slots: the pair loops' order, renewed at every list build in neighbour-grid cell order (a
   // scrambled particle order costs 3.4x at 10^5 particles); slot s is particle slot_particle_[s].
   std::vector<std::uint32_t> slot_particle_;
-  std::vector<Real> x_slots_;  // positions in slot order (the Verlet displacement check)
   std::vector<Real> records_;  // per slot: the fields its neighbours read (wcsph_detail::Record)
   std::vector<std::uint32_t> inside_;    // per RHS: each row's neighbours inside the support (at its list offset)
   std::vector<std::size_t> inside_count_;

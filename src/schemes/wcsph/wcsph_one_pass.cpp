@@ -1,0 +1,102 @@
+// WcsphSystem's serial RHS after the records in one pass over the slots (issue #19): each row's
+// neighbours inside the support, its density gradient (delta-SPH with Antuono's correction), and
+// the force rows as soon as the gradients of all their neighbours are in the records. A row's
+// neighbours sit within about one cell row of slots (cell order), so its force row follows its
+// gradient by that much, while the neighbours' records and the row's inside list are still in
+// the second-level cache; three passes over 10^6 particles read both back from memory. Every row
+// sums exactly as in the separate passes (prepare_rows, forces): results are equal bit for bit.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "sphark/core/profile.hpp"
+#include "sphark/kernels/kernel_list.hpp"
+#include "sphark/schemes/wcsph/wcsph_system.hpp"
+#include "wcsph_halo.hpp"
+#include "wcsph_rows_in_use.hpp"
+
+namespace sphark {
+
+namespace {
+// Slots [first, last) of this thread: the split of OpenMP's schedule(static) without a chunk.
+std::pair<std::size_t, std::size_t> thread_share(std::size_t n) {
+  const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+  const auto t = static_cast<std::size_t>(omp_get_thread_num());
+  const std::size_t q = n / threads, r = n % threads;
+  const std::size_t first = t * q + std::min(t, r);
+  return {first, first + q + (t < r ? 1 : 0)};
+}
+
+// The records of the slots at the leading edge of the rows' neighbourhoods come from memory;
+// fetched this many slots ahead of the row's largest listed neighbour.
+constexpr std::size_t kLeadAhead = 32;
+template <int D>
+void prefetch_record(const wcsph_detail::RowInput<D>& in, std::size_t s) {
+  const char* r = reinterpret_cast<const char*>(in.record(s));
+  __builtin_prefetch(r);
+  __builtin_prefetch(r + sizeof(Real) * wcsph_detail::Record<D>::size - 1);
+}
+}  // namespace
+
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::rows_in_one_pass(const Real* y, Real* ydot) {
+  using wcsph_detail::Record;
+  const std::size_t n = layout_.particles(), count = slot_particle_.size();
+  const wcsph_detail::RowInput<D> in = row_input();
+  const wcsph_detail::Rows<D, Kernel> rows = wcsph_detail::rows_in_use<D, Kernel>();
+  const wcsph_detail::ForceStore<D> store = force_store(y, ydot);
+  const bool gradient = corrected_diffusion();
+  const std::uint32_t* particle = slot_particle_.data();
+  inside_.resize(search_.list().pairs() + kInsidePad * n);
+  inside_count_.resize(n);
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& span = search_.row_spans();  // slots a row reads
+  ScopedPhase timer(Phase::Forces);
+  Real max_acc2 = 0;
+#pragma omp parallel reduction(max : max_acc2)
+  {
+    const auto [first, last] = thread_share(n);
+    auto force = [&](std::size_t a) { max_acc2 = std::max(max_acc2, store(particle[a], rows.forces(in, a, inside_row(a)))); };
+    std::vector<std::uint32_t> deferred;  // rows reading another thread's gradients: after the barrier
+    std::size_t next = first;             // the first row whose force row waits
+    for (std::size_t a = first; a < last; ++a) {
+      prefetch_record(in, std::min(span[a].second + kLeadAhead, count - 1));
+      inside_count_[a] = rows.inside(in, a, inside_start(a));
+      if (!gradient) {
+        force(a);
+        continue;
+      }
+      grad_rho_[a] = rows.gradient(in, a, inside_row(a));
+      Eigen::Map<Vec<D>>(records_.data() + Record<D>::size * a + Record<D>::grad_rho) = grad_rho_[a];
+      for (; next <= a; ++next) {  // gradients of slots first .. a are in
+        const auto [lo, hi] = span[next];
+        if (lo < first || hi >= last)
+          deferred.push_back(static_cast<std::uint32_t>(next));
+        else if (hi <= a)
+          force(next);
+        else
+          break;
+      }
+    }
+    for (; gradient && next < last; ++next) {
+      const auto [lo, hi] = span[next];
+      if (lo < first || hi >= last)
+        deferred.push_back(static_cast<std::uint32_t>(next));
+      else
+        force(next);
+    }
+#pragma omp barrier
+    for (const std::uint32_t a : deferred) force(a);
+  }
+  max_accel_ = std::sqrt(max_acc2);
+}
+
+#define SPHARK_WCSPH_ONE_PASS(K)                                                   \
+  template void WcsphSystem<2, K<2>>::rows_in_one_pass(const Real*, Real*); \
+  template void WcsphSystem<3, K<3>>::rows_in_one_pass(const Real*, Real*);
+SPHARK_KERNELS(SPHARK_WCSPH_ONE_PASS)
+#undef SPHARK_WCSPH_ONE_PASS
+
+}  // namespace sphark
