@@ -259,11 +259,11 @@ void KdTreeNeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order)
   swap_rows_.resize(list_.indices.size());
   swap_pts_.resize(ppts_.size());
   swap_r2_.resize(n);
+  spans_.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t o = order[i];
-    std::size_t w = scratch_offsets_[i];
-    for (std::size_t r = list_.begin(o); r < list_.end(o); ++r) swap_rows_[w++] = inverse[list_.indices[r]];
+    spans_[i] = renumber_row(list_, o, inverse.data(), static_cast<std::uint32_t>(i), &swap_rows_[scratch_offsets_[i]]);
     for (int k = 0; k < D; ++k) swap_pts_[D * i + k] = ppts_[D * o + k];
     swap_r2_[i] = pr2_[o];
   }

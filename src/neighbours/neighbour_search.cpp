@@ -264,15 +264,7 @@ void NeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order) {
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t o = order[i];
     for (int k = 0; k < D; ++k) swap_points_[D * i + k] = points_[D * o + k];
-    std::size_t w = swap_offsets_[i];
-    auto lo = static_cast<std::uint32_t>(i), hi = lo;
-    for (std::size_t r = list_.begin(o); r < list_.end(o); ++r) {
-      const std::uint32_t j = inverse_[list_.indices[r]];
-      swap_u32_[w++] = j;
-      lo = std::min(lo, j);
-      hi = std::max(hi, j);
-    }
-    spans_[i] = {lo, hi};
+    spans_[i] = renumber_row(list_, o, inverse_.data(), static_cast<std::uint32_t>(i), &swap_u32_[swap_offsets_[i]]);
   }
   std::copy(swap_points_.begin(), swap_points_.end(), points_.begin());
   std::copy(swap_offsets_.begin(), swap_offsets_.end(), list_.offsets.begin());

@@ -186,6 +186,15 @@ TEST(KdTreeNeighbourSearch, QueryRenumberAndDisplacement) {
                                          kd.list().indices.begin() + kd.list().end(i)),
               row);
   }
+  ASSERT_EQ(kd.row_spans().size(), 600u);  // per row: the least and largest of itself and its entries
+  for (std::size_t i = 0; i < 600; ++i) {
+    RowSpan expect{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i)};
+    for (std::size_t k = kd.list().begin(i); k < kd.list().end(i); ++k) {
+      expect.first = std::min(expect.first, kd.list().indices[k]);
+      expect.second = std::max(expect.second, kd.list().indices[k]);
+    }
+    ASSERT_EQ(kd.row_spans()[i], expect) << i;
+  }
   EXPECT_EQ(kd.max_displacement_since_build(y.data()), 0.0);
   y[3 * 17] += 0.01;
   EXPECT_NEAR(kd.max_displacement_since_build(y.data()), 0.01, 1e-15);

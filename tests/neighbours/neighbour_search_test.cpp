@@ -194,6 +194,19 @@ static void expect_renamed_rows(const NeighbourList& before, const std::vector<s
   }
 }
 
+// row_spans() after renumber: per particle, the least and largest index of itself and its row.
+static void expect_row_spans(const NeighbourList& list, const std::vector<RowSpan>& spans) {
+  ASSERT_EQ(spans.size(), list.particles());
+  for (std::size_t i = 0; i < spans.size(); ++i) {
+    RowSpan expect{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i)};
+    for (std::size_t k = list.begin(i); k < list.end(i); ++k) {
+      expect.first = std::min(expect.first, list.indices[k]);
+      expect.second = std::max(expect.second, list.indices[k]);
+    }
+    ASSERT_EQ(spans[i], expect) << i;
+  }
+}
+
 TEST(NeighbourSearch, RenumberKeepsTheListsOfTheRenamedParticles) {
   const auto x = random_points<2>(500, 19);
   NeighbourSearch<2> ns;
@@ -202,6 +215,12 @@ TEST(NeighbourSearch, RenumberKeepsTheListsOfTheRenamedParticles) {
   const std::vector<std::uint32_t> order = ns.cell_order();  // new i = old order[i]
   ns.renumber(order);
   expect_renamed_rows(before, order, ns.list());
+  expect_row_spans(ns.list(), ns.row_spans());
+  // the displacement check reads positions in the order before renumbering through `order`
+  std::vector<Real> moved = x;
+  EXPECT_EQ(ns.max_displacement_since_build(moved.data(), order.data()), 0.0);
+  moved[2 * order[7] + 1] += 0.003;
+  EXPECT_NEAR(ns.max_displacement_since_build(moved.data(), order.data()), 0.003, 1e-15);
 }
 
 // Sparse lists (fewer listed pairs than particles, e.g. smoothing lengths far too small): the

@@ -39,6 +39,7 @@ class KdTreeNeighbourSearch {
              const Real* radii = nullptr);
   // New index i is old index order[i]; lists, stored points and the tree follow, rows keep order.
   void renumber(const std::vector<std::uint32_t>& order);
+  const std::vector<RowSpan>& row_spans() const { return spans_; }  // after renumber(): NeighbourSearch's
   // The built particles in tree order (leaf by leaf).
   const std::vector<std::uint32_t>& cell_order() const { return index_; }
   // Built particles within `radius` of p, ascending.
@@ -86,6 +87,7 @@ class KdTreeNeighbourSearch {
   std::vector<std::vector<std::uint32_t>> thread_rows_;
   std::vector<std::vector<std::int32_t>> thread_stack_;
   std::vector<std::uint32_t> scratch_u32_, swap_rows_;  // renumber() scratch
+  std::vector<RowSpan> spans_;                           // row_spans()
   std::vector<std::size_t> scratch_offsets_;
   std::vector<Real> swap_pts_, swap_r2_;
   long allocations_ = 0;

@@ -10,6 +10,7 @@
 // A rebuild reuses every buffer's capacity: once the buffers have grown to the largest lists
 // seen, a rebuild allocates nothing (allocations() counts the builds that had to grow one).
 // The build is OpenMP-parallel over particles; the lists do not depend on the thread count.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <array>
@@ -42,6 +43,22 @@ struct NeighbourList {
   std::size_t pairs() const { return indices.size(); }
 };
 
+// The least and largest particle index of a row and its owner: the span a loop over it reads.
+using RowSpan = std::pair<std::uint32_t, std::uint32_t>;
+
+// Row o of `list` renumbered into out (index j becomes inverse[j]); `self` is its new owner.
+inline RowSpan renumber_row(const NeighbourList& list, std::size_t o, const std::uint32_t* inverse,
+                            std::uint32_t self, std::uint32_t* out) {
+  RowSpan span{self, self};
+  for (std::size_t r = list.begin(o); r < list.end(o); ++r) {
+    const std::uint32_t j = inverse[list.indices[r]];
+    *out++ = j;
+    span.first = std::min(span.first, j);
+    span.second = std::max(span.second, j);
+  }
+  return span;
+}
+
 template <int D>
 class NeighbourSearch {
  public:
@@ -65,7 +82,7 @@ class NeighbourSearch {
   void renumber(const std::vector<std::uint32_t>& order);
   // After renumber(): per particle i, the least and largest index in {i} and its row (the span of
   // memory a loop over the row reads, in the new order); empty before.
-  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& row_spans() const { return spans_; }
+  const std::vector<RowSpan>& row_spans() const { return spans_; }
 
   // The built particles in cell order (a spatial order: neighbours in space are near in it).
   const std::vector<std::uint32_t>& cell_order() const { return cell_particles_; }
@@ -120,7 +137,7 @@ class NeighbourSearch {
   std::vector<std::uint32_t> cell_of_, cell_start_, cell_particles_;
   std::vector<std::vector<std::uint32_t>> thread_lists_;  // per-thread rows (their size: room, not length), kept
   std::vector<std::uint32_t> inverse_, swap_u32_;         // renumber() scratch
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> spans_;  // row_spans()
+  std::vector<RowSpan> spans_;                            // row_spans()
   std::vector<std::size_t> swap_offsets_;
   std::vector<Real> swap_points_;
   std::vector<Real> radius2_;  // per-particle squared radii of the last build (if given)

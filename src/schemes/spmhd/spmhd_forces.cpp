@@ -13,6 +13,7 @@
 
 #include <cmath>
 
+#include "sphark/core/prefetch.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/mhd_operators.hpp"
@@ -157,6 +158,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
                            derivative(Field::EulerAlpha, !induction), derivative(Field::Psi, cleaning),
                            divB_.data(), divv_.data()};
   const PairRow<D, K> row = pair_row_in_use<D, K>();
+  const std::vector<RowSpan>& spans = ns_.row_spans();
   const std::size_t room = max_list_ + 8;  // a row plus a padded block
   row_scratch_.resize(room * static_cast<std::size_t>(omp_get_max_threads()));
   std::size_t pairs = 0;
@@ -167,6 +169,9 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < rows; ++i) {
       const std::size_t a = only ? (*only)[i] : i;
+      if (a < spans.size())  // the records at the rows' leading edge (core/prefetch.hpp)
+        prefetch_lines(&records_[Record<D>::size * std::min<std::size_t>(spans[a].second + kPrefetchSlotsAhead, n_ - 1)],
+                       sizeof(Real) * Record<D>::size);
       const PairSums<D> sums = row(in, a, inside);
       pairs += sums.pairs;
       const ParticleA<D> pa{a, h_[a], rho_[a], Eigen::Map<const Vec3>(&B_[3 * a]),

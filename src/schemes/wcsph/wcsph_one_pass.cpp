@@ -3,7 +3,8 @@
 // the force rows as soon as the gradients of all their neighbours are in the records. A row's
 // neighbours sit within about one cell row of slots (cell order), so its force row follows its
 // gradient by that much, while the neighbours' records and the row's inside list are still in
-// the second-level cache; three passes over 10^6 particles read both back from memory. Every row
+// the second-level cache (the records at the leading edge prefetched: core/prefetch.hpp); three
+// passes over 10^6 particles read both back from memory. Every row
 // sums exactly as in the separate passes (prepare_rows, forces): results are equal bit for bit.
 #include <omp.h>
 
@@ -12,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "sphark/core/prefetch.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/schemes/wcsph/wcsph_system.hpp"
@@ -30,15 +32,6 @@ std::pair<std::size_t, std::size_t> thread_share(std::size_t n) {
   return {first, first + q + (t < r ? 1 : 0)};
 }
 
-// The records of the slots at the leading edge of the rows' neighbourhoods come from memory;
-// fetched this many slots ahead of the row's largest listed neighbour.
-constexpr std::size_t kLeadAhead = 32;
-template <int D>
-void prefetch_record(const wcsph_detail::RowInput<D>& in, std::size_t s) {
-  const char* r = reinterpret_cast<const char*>(in.record(s));
-  __builtin_prefetch(r);
-  __builtin_prefetch(r + sizeof(Real) * wcsph_detail::Record<D>::size - 1);
-}
 }  // namespace
 
 template <int D, class Kernel>
@@ -52,7 +45,7 @@ void WcsphSystem<D, Kernel>::rows_in_one_pass(const Real* y, Real* ydot) {
   const std::uint32_t* particle = slot_particle_.data();
   inside_.resize(search_.list().pairs() + kInsidePad * n);
   inside_count_.resize(n);
-  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& span = search_.row_spans();  // slots a row reads
+  const std::vector<RowSpan>& span = search_.row_spans();  // slots a row reads
   ScopedPhase timer(Phase::Forces);
   Real max_acc2 = 0;
 #pragma omp parallel reduction(max : max_acc2)
@@ -62,7 +55,7 @@ void WcsphSystem<D, Kernel>::rows_in_one_pass(const Real* y, Real* ydot) {
     std::vector<std::uint32_t> deferred;  // rows reading another thread's gradients: after the barrier
     std::size_t next = first;             // the first row whose force row waits
     for (std::size_t a = first; a < last; ++a) {
-      prefetch_record(in, std::min(span[a].second + kLeadAhead, count - 1));
+      prefetch_lines(in.record(std::min(span[a].second + kPrefetchSlotsAhead, count - 1)), sizeof(Real) * Record<D>::size);
       inside_count_[a] = rows.inside(in, a, inside_start(a));
       if (!gradient) {
         force(a);
