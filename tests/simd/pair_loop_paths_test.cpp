@@ -2,7 +2,8 @@
 // the CPU has them) against the scalar path, on a WCSPH drop (2D and 3D) and SPMHD states with every term on
 // (2D Orszag-Tang, 3D disordered lattice; a barotropic gas, which has no internal energy; a
 // self-gravitating clump with a sink particle, gravity's grad-h term included): every derivative
-// field agrees to round-off, and each path gives the same result on 1 and 2 threads, bit for bit.
+// field agrees to round-off, and each path gives the same result on 1 and 2 threads, bit for bit,
+// and with the records written by streaming stores.
 //
 // The bound. A derivative is a sum of N pair terms; the paths add them in another order (lanes,
 // then the lanes) and, with FMA, round a*b + c once instead of twice. Either changes the sum by
@@ -23,6 +24,7 @@
 
 #include "../spmhd/spmhd_checks.hpp"
 #include "../support/clump_state.hpp"
+#include "sphark/core/cache_hints.hpp"
 #include "sphark/initial/spheres.hpp"
 #include "sphark/scenes/orszag_tang/orszag_tang.hpp"
 #include "sphark/scenes/water_drop/water_drop.hpp"
@@ -101,6 +103,13 @@ void compare_paths(const StateLayout& layout, const std::string& scene, Make&& m
     expect_round_off(layout, one, scalar, name);
     expect_identical(one, rhs_on(path, 2, make), name + ", 2 threads");
   }
+  // the records written with streaming stores (core/cache_hints.hpp; by default only above 16 MB)
+  const std::vector<Real> cached = rhs_on(widest_pair_loop_simd(), 2, make);
+  const std::size_t threshold = stream_records_above();
+  stream_records_above() = 0;
+  const std::vector<Real> streamed = rhs_on(widest_pair_loop_simd(), 2, make);
+  stream_records_above() = threshold;
+  expect_identical(cached, streamed, scene + ", records streamed");
 }
 
 // The drop with viscosity and the corrected density diffusion on (every WCSPH term), moved off

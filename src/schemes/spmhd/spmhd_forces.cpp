@@ -13,7 +13,7 @@
 
 #include <cmath>
 
-#include "sphark/core/prefetch.hpp"
+#include "sphark/core/cache_hints.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/mhd_operators.hpp"
@@ -93,30 +93,36 @@ void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
   const Real* psi = opt_.cleaning != Cleaning::None ? psi_.data() : nullptr;
   const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
   records_.resize(R::size * n_);
-#pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n_; ++a) {
-    Real* r = records_.data() + R::size * a;
-    const Real inv_h = 1.0 / h_[a];
-    Real s = inv_h * inv_h;
-    for (int k = 0; k < D; ++k) s *= inv_h;
-    const Real o = 1.0 / (omega_[a] * rho_[a] * rho_[a]);
-    inv_omega_rho2_[a] = o;
-    const Real* B = B_.data() + 3 * a;
-    for (int k = 0; k < D; ++k) {
-      r[R::x + k] = x_[D * a + k];
-      r[R::v + k] = opt_.evolve_particles ? v_[D * a + k] : 0;
-      r[R::bo + k] = o * B[k];
+  const bool stream = stream_records(sizeof(Real) * records_.size());
+#pragma omp parallel
+  {
+#pragma omp for schedule(static) nowait
+    for (std::size_t a = 0; a < n_; ++a) {
+      alignas(16) Real r[R::size];
+      const Real inv_h = 1.0 / h_[a];
+      Real s = inv_h * inv_h;
+      for (int k = 0; k < D; ++k) s *= inv_h;
+      const Real o = 1.0 / (omega_[a] * rho_[a] * rho_[a]);
+      inv_omega_rho2_[a] = o;
+      const Real* B = B_.data() + 3 * a;
+      for (int k = 0; k < D; ++k) {
+        r[R::x + k] = x_[D * a + k];
+        r[R::v + k] = opt_.evolve_particles ? v_[D * a + k] : 0;
+        r[R::bo + k] = o * B[k];
+      }
+      r[R::h] = h_[a], r[R::m] = ms_[a], r[R::inv_h] = inv_h;
+      r[R::grad_scale] = s;  // f_over_r(r, h) = f_over_r(r / h, 1) / h^(D+2)
+      r[R::rho] = rho_[a], r[R::P] = P_[a], r[R::u] = energy ? u_[a] : 0;  // no u with a barotropic EOS
+      r[R::fast_speed] = fast_speed_[a];
+      // local_ch: the state is psi / c_h
+      r[R::psi_o] = psi ? o * psi[a] * (opt_.local_ch ? cleaning_speeds_[a] : 1.0) : 0;
+      r[R::psi] = psi ? psi[a] : 0;
+      for (int k = 0; k < 3; ++k) r[R::B + k] = B[k];
+      mhd::maxwell_stress_over_omega_rho2<D>(B, P_[a], o, r + R::stress);  // eq. (8)
+      for (int k = R::bo + D; k < R::size; ++k) r[k] = 0;
+      store_record(records_.data() + R::size * a, r, R::size, stream);
     }
-    r[R::h] = h_[a], r[R::m] = ms_[a], r[R::inv_h] = inv_h;
-    r[R::grad_scale] = s;  // f_over_r(r, h) = f_over_r(r / h, 1) / h^(D+2)
-    r[R::rho] = rho_[a], r[R::P] = P_[a], r[R::u] = energy ? u_[a] : 0;  // no u with a barotropic EOS
-    r[R::fast_speed] = fast_speed_[a];
-    // local_ch: the state is psi / c_h
-    r[R::psi_o] = psi ? o * psi[a] * (opt_.local_ch ? cleaning_speeds_[a] : 1.0) : 0;
-    r[R::psi] = psi ? psi[a] : 0;
-    for (int k = 0; k < 3; ++k) r[R::B + k] = B[k];
-    mhd::maxwell_stress_over_omega_rho2<D>(B, P_[a], o, r + R::stress);  // eq. (8)
-    for (int k = R::bo + D; k < R::size; ++k) r[k] = 0;
+    if (stream) store_fence();  // each writing thread, before the region's barrier
   }
 }
 
@@ -169,7 +175,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < rows; ++i) {
       const std::size_t a = only ? (*only)[i] : i;
-      if (a < spans.size())  // the records at the rows' leading edge (core/prefetch.hpp)
+      if (a < spans.size())  // the records at the rows' leading edge (core/cache_hints.hpp)
         prefetch_lines(&records_[Record<D>::size * std::min<std::size_t>(spans[a].second + kPrefetchSlotsAhead, n_ - 1)],
                        sizeof(Real) * Record<D>::size);
       const PairSums<D> sums = row(in, a, inside);

@@ -3,7 +3,7 @@
 // the force rows as soon as the gradients of all their neighbours are in the records. A row's
 // neighbours sit within about one cell row of slots (cell order), so its force row follows its
 // gradient by that much, while the neighbours' records and the row's inside list are still in
-// the second-level cache (the records at the leading edge prefetched: core/prefetch.hpp); three
+// the second-level cache (the records at the leading edge prefetched: core/cache_hints.hpp); three
 // passes over 10^6 particles read both back from memory. Every row
 // sums exactly as in the separate passes (prepare_rows, forces): results are equal bit for bit.
 #include <omp.h>
@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "sphark/core/prefetch.hpp"
+#include "sphark/core/cache_hints.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/schemes/wcsph/wcsph_system.hpp"

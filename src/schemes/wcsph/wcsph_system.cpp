@@ -6,6 +6,7 @@
 #include <exception>
 #include <sstream>
 
+#include "sphark/core/cache_hints.hpp"
 #include "sphark/core/profile.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/tait_eos.hpp"
@@ -85,23 +86,29 @@ void WcsphSystem<D, Kernel>::fill_records(const wcsph_detail::ParticleFields<D>&
   records_.resize(Record<D>::size * count);
   pressure_.resize(std::max(pressure_.size(), count));
   const std::uint32_t* particle = slot_particle_.data();
-#pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < count; ++a) {  // slot a: particle p
-    const std::size_t p = particle[a];
-    const Real rho = f.rho[p];
-    pressure_[p] = tait_pressure(rho, p_.rho0, p_.sound_speed);
-    Real* r = records_.data() + Record<D>::size * a;
-    for (int k = 0; k < D; ++k) {
-      r[Record<D>::x + k] = f.x[D * p + k];
-      r[Record<D>::v + k] = f.v[D * p + k];
-      r[Record<D>::grad_rho + k] = 0;
+  const bool stream = stream_records(sizeof(Real) * records_.size());
+#pragma omp parallel
+  {
+#pragma omp for schedule(static) nowait
+    for (std::size_t a = 0; a < count; ++a) {  // slot a: particle p
+      const std::size_t p = particle[a];
+      const Real rho = f.rho[p];
+      pressure_[p] = tait_pressure(rho, p_.rho0, p_.sound_speed);
+      alignas(16) Real r[Record<D>::size];
+      for (int k = 0; k < D; ++k) {
+        r[Record<D>::x + k] = f.x[D * p + k];
+        r[Record<D>::v + k] = f.v[D * p + k];
+        r[Record<D>::grad_rho + k] = 0;
+      }
+      r[Record<D>::rho] = rho;
+      r[Record<D>::volume] = m / rho;
+      r[Record<D>::p_over_rho2] = pressure_[p] / (rho * rho);
+      r[Record<D>::q_psi] = clean ? f.psi[p] / (rho * rho) : 0;  // Omega = 1 for constant h
+      r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho, p_.rho0, p_.sound_speed) : 0;
+      for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
+      store_record(records_.data() + Record<D>::size * a, r, Record<D>::size, stream);
     }
-    r[Record<D>::rho] = rho;
-    r[Record<D>::volume] = m / rho;
-    r[Record<D>::p_over_rho2] = pressure_[p] / (rho * rho);
-    r[Record<D>::q_psi] = clean ? f.psi[p] / (rho * rho) : 0;  // Omega = 1 for constant h
-    r[Record<D>::sound_speed] = viscosity ? tait_sound_speed(rho, p_.rho0, p_.sound_speed) : 0;
-    for (int k = 3 * D + 5; k < Record<D>::size; ++k) r[k] = 0;
+    if (stream) store_fence();  // each writing thread, before the region's barrier
   }
 }
 
