@@ -4,8 +4,9 @@
 // neighbours sit within about one cell row of slots (cell order), so its force row follows its
 // gradient by that much, while the neighbours' records and the row's inside list are still in
 // the second-level cache (the records at the leading edge prefetched: core/cache_hints.hpp); three
-// passes over 10^6 particles read both back from memory. Every row
-// sums exactly as in the separate passes (prepare_rows, forces): results are equal bit for bit.
+// passes over 10^6 particles read both back from memory. Every row sums exactly as in the separate
+// passes (prepare_rows, forces; the distributed RHS's): results are equal bit for bit. The spans
+// are the list rows' (skin included): a force row may wait a little longer than it must.
 #include <omp.h>
 
 #include <algorithm>
@@ -31,7 +32,6 @@ std::pair<std::size_t, std::size_t> thread_share(std::size_t n) {
   const std::size_t first = t * q + std::min(t, r);
   return {first, first + q + (t < r ? 1 : 0)};
 }
-
 }  // namespace
 
 template <int D, class Kernel>
