@@ -23,17 +23,6 @@
 
 namespace sphark {
 
-namespace {
-// Slots [first, last) of this thread: the split of OpenMP's schedule(static) without a chunk.
-std::pair<std::size_t, std::size_t> thread_share(std::size_t n) {
-  const auto threads = static_cast<std::size_t>(omp_get_num_threads());
-  const auto t = static_cast<std::size_t>(omp_get_thread_num());
-  const std::size_t q = n / threads, r = n % threads;
-  const std::size_t first = t * q + std::min(t, r);
-  return {first, first + q + (t < r ? 1 : 0)};
-}
-}  // namespace
-
 template <int D, class Kernel>
 void WcsphSystem<D, Kernel>::rows_in_one_pass(const Real* y, Real* ydot) {
   using wcsph_detail::Record;
@@ -43,17 +32,29 @@ void WcsphSystem<D, Kernel>::rows_in_one_pass(const Real* y, Real* ydot) {
   const wcsph_detail::ForceStore<D> store = force_store(y, ydot);
   const bool gradient = corrected_diffusion();
   const std::uint32_t* particle = slot_particle_.data();
-  inside_.resize(search_.list().pairs() + kInsidePad * n);
-  inside_count_.resize(n);
+  reserve_inside_rows();
   const std::vector<RowSpan>& span = search_.row_spans();  // slots a row reads
   ScopedPhase timer(Phase::Forces);
   Real max_acc2 = 0;
 #pragma omp parallel reduction(max : max_acc2)
   {
-    const auto [first, last] = thread_share(n);
+    const auto t = static_cast<std::size_t>(omp_get_thread_num()), nt = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t first = n * t / nt, last = n * (t + 1) / nt;  // this thread's slots
     auto force = [&](std::size_t a) { max_acc2 = std::max(max_acc2, store(particle[a], rows.forces(in, a, inside_row(a)))); };
-    std::vector<std::uint32_t> deferred;  // rows reading another thread's gradients: after the barrier
-    std::size_t next = first;             // the first row whose force row waits
+    std::vector<std::uint32_t> deferred;  // rows reading another thread's slots: after the barrier
+    // Row r's force row, once the gradients of slots first .. done are in: now, or deferred, or
+    // not yet (false).
+    auto settle = [&](std::size_t r, std::size_t done) {
+      const auto [lo, hi] = span[r];
+      if (lo < first || hi >= last)
+        deferred.push_back(static_cast<std::uint32_t>(r));
+      else if (hi <= done)
+        force(r);
+      else
+        return false;
+      return true;
+    };
+    std::size_t next = first;  // the first row whose force row waits
     for (std::size_t a = first; a < last; ++a) {
       prefetch_lines(in.record(std::min(span[a].second + kPrefetchSlotsAhead, count - 1)), sizeof(Real) * Record<D>::size);
       inside_count_[a] = rows.inside(in, a, inside_start(a));
@@ -61,25 +62,10 @@ void WcsphSystem<D, Kernel>::rows_in_one_pass(const Real* y, Real* ydot) {
         force(a);
         continue;
       }
-      grad_rho_[a] = rows.gradient(in, a, inside_row(a));
-      Eigen::Map<Vec<D>>(records_.data() + Record<D>::size * a + Record<D>::grad_rho) = grad_rho_[a];
-      for (; next <= a; ++next) {  // gradients of slots first .. a are in
-        const auto [lo, hi] = span[next];
-        if (lo < first || hi >= last)
-          deferred.push_back(static_cast<std::uint32_t>(next));
-        else if (hi <= a)
-          force(next);
-        else
-          break;
-      }
+      grad_rho_[a] = wcsph_detail::gradient_into_record(rows, in, a, inside_row(a), records_.data());
+      while (next <= a && settle(next, a)) ++next;
     }
-    for (; gradient && next < last; ++next) {
-      const auto [lo, hi] = span[next];
-      if (lo < first || hi >= last)
-        deferred.push_back(static_cast<std::uint32_t>(next));
-      else
-        force(next);
-    }
+    while (gradient && next < last && settle(next, last - 1)) ++next;
 #pragma omp barrier
     for (const std::uint32_t a : deferred) force(a);
   }

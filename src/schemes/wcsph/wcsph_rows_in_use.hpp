@@ -35,6 +35,14 @@ Rows<D, K> rows_in_use() {
   return {neighbours_inside<Real, D>, density_gradient_row<Real, D, K>, force_row<Real, D, K>};
 }
 
+// Row a's <grad rho>^L (density_gradient_row), also written into a's record for its neighbours.
+template <int D, class K>
+Vec<D> gradient_into_record(const Rows<D, K>& rows, const RowInput<D>& in, std::size_t a, InsideRow row, Real* records) {
+  const Vec<D> g = rows.gradient(in, a, row);
+  Eigen::Map<Vec<D>>(records + Record<D>::size * a + Record<D>::grad_rho) = g;
+  return g;
+}
+
 // Particle p's derivatives from its force row's sums; returns |dv_p/dt|^2.
 template <int D>
 struct ForceStore {

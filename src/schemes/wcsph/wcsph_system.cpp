@@ -136,25 +136,27 @@ wcsph_detail::InsideRow WcsphSystem<D, Kernel>::inside_row(std::size_t a) const 
 
 template <int D, class Kernel>
 void WcsphSystem<D, Kernel>::prepare_rows(const wcsph_detail::ParticleFields<D>& f, std::size_t count) {
-  using wcsph_detail::Record;
   fill_records(f, count);  // before `in`: it holds records_.data()
   const RowInput<D> in = row_input();
   const Rows<D, Kernel> rows = rows_in_use<D, Kernel>();
   const std::size_t n = layout_.particles();
-  // The pairs inside the support: inside_count_[a] of them from inside_start(a) on, a row's
-  // room its list length plus the padding a block may write past it.
-  inside_.resize(search_.list().pairs() + kInsidePad * n);
-  inside_count_.resize(n);
+  reserve_inside_rows();
   ScopedPhase forces_timer(Phase::Forces);
 #pragma omp parallel for schedule(static)
   for (std::size_t a = 0; a < n; ++a) inside_count_[a] = rows.inside(in, a, inside_start(a));
   if (!corrected_diffusion()) return;
   ScopedPhase timer(Phase::DensityH);
 #pragma omp parallel for schedule(static)
-  for (std::size_t a = 0; a < n; ++a) {
-    grad_rho_[a] = rows.gradient(in, a, inside_row(a));
-    Eigen::Map<Vec<D>>(records_.data() + Record<D>::size * a + Record<D>::grad_rho) = grad_rho_[a];
-  }
+  for (std::size_t a = 0; a < n; ++a)
+    grad_rho_[a] = wcsph_detail::gradient_into_record(rows, in, a, inside_row(a), records_.data());
+}
+
+// The pairs inside the support: inside_count_[a] of them from inside_start(a) on, a row's room
+// its list length plus the padding a block may write past it.
+template <int D, class Kernel>
+void WcsphSystem<D, Kernel>::reserve_inside_rows() {
+  inside_.resize(search_.list().pairs() + kInsidePad * layout_.particles());
+  inside_count_.resize(layout_.particles());
 }
 
 template <int D, class Kernel>

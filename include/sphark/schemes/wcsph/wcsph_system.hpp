@@ -105,6 +105,7 @@ class WcsphSystem final : public OdeSystem {
   wcsph_detail::RowInput<D> row_input() const;  // what the pair rows read (records_, lists)
   // Row a's neighbours inside the support: from inside_start(a) on (room: its list length + pad).
   static constexpr std::size_t kInsidePad = 8;
+  void reserve_inside_rows();  // room for every local row's inside list
   std::uint32_t* inside_start(std::size_t a);
   wcsph_detail::InsideRow inside_row(std::size_t a) const;
   bool viscosity() const { return p_.alpha > 0 && !p_.cleaning_subsystem_only; }
