@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <cstdio>
 #include <random>
 
 #include "sphark/kernels/kernels.hpp"
@@ -119,7 +120,9 @@ TEST(WcsphOnePass, EqualsTheDirectPairSumsAcrossThePeriodicFaces) {
     for (std::size_t k = L.offset(f); k < L.offset(f) + L.field_size(f); ++k)
       ASSERT_NEAR(got[k], want[k], 1e-12 * scale) << "entry " << k;
   }
-  // the gradients matter here: the uncorrected diffusion differs by far more than round-off
+  // the gradients matter here: the uncorrected diffusion differs by 4.3e-3 of max |drho/dt|
+  // (measured), 10^9 times the tolerance above; a force row reading a gradient not yet computed
+  // would be off by that much
   WcsphParams<2> q = params();
   q.diffusion_correction = false;
   Sys plain(kSide * kSide, q, box());
@@ -127,7 +130,8 @@ TEST(WcsphOnePass, EqualsTheDirectPairSumsAcrossThePeriodicFaces) {
   ASSERT_EQ(plain.rhs(0, y.data(), ydot.data()), 0);
   for (std::size_t a = 0; a < L.particles(); ++a)
     diffusion = std::max(diffusion, std::abs(ydot[L.offset(Field::Density) + a] - want[L.offset(Field::Density) + a]));
-  EXPECT_GT(diffusion, 1e-6 * drho_scale);
+  std::printf("uncorrected - corrected diffusion: %.3e of max drho/dt\n", diffusion / drho_scale);
+  EXPECT_GT(diffusion, 1e-3 * drho_scale);
 }
 
 TEST(WcsphOnePass, SameBitForBitOnOneToFourThreads) {
