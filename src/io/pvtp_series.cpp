@@ -61,4 +61,11 @@ std::filesystem::path ParallelVtkSeriesWriter::write(const ParticleFrame& frame,
   return dir_ / pvtp;
 }
 
+void ParallelVtkSeriesWriter::restore(std::vector<std::pair<Real, std::string>> frames) {
+  comm_.collectively([&] {
+    if (comm_.rank() == 0) write_file_atomically(pvd_path(), pvd_collection_xml(frames));
+  });
+  frames_ = std::move(frames);
+}
+
 }  // namespace sphark

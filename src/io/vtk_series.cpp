@@ -12,6 +12,8 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -152,6 +154,35 @@ std::string pvd_collection_xml(const std::vector<std::pair<Real, std::string>>& 
   }
   xml += "  </Collection>\n</VTKFile>\n";
   return xml;
+}
+
+std::string frame_list_text(const std::vector<std::pair<Real, std::string>>& frames) {
+  std::string s;
+  char buf[32];
+  for (const auto& [t, file] : frames) {
+    std::snprintf(buf, sizeof buf, "%.17g ", t);
+    s += buf;
+    s += file;
+    s += '\n';
+  }
+  return s;
+}
+
+std::vector<std::pair<Real, std::string>> parse_frame_list(const std::string& text, const std::filesystem::path& dir,
+                                                           const std::filesystem::path& earlier_dir) {
+  std::vector<std::pair<Real, std::string>> frames;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto space = line.find(' ');
+    if (space == std::string::npos || space + 1 >= line.size())
+      throw std::runtime_error("malformed frame list line '" + line + "'");
+    std::string file = line.substr(space + 1);
+    if (!earlier_dir.empty() && !std::filesystem::exists(dir / file) && std::filesystem::exists(earlier_dir / file))
+      file = std::filesystem::relative(earlier_dir / file, dir).generic_string();
+    frames.emplace_back(std::strtod(line.c_str(), nullptr), std::move(file));
+  }
+  return frames;
 }
 
 VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir, std::string basename)

@@ -59,32 +59,10 @@ std::filesystem::path ResumableVtkSeries::write(const ParticleFrame& frame, Real
   return dir_ / file;
 }
 
-std::string ResumableVtkSeries::text() const {
-  std::string s;
-  char buf[32];
-  for (const auto& [t, file] : frames_) {
-    std::snprintf(buf, sizeof buf, "%.17g ", t);
-    s += buf;
-    s += file;
-    s += '\n';
-  }
-  return s;
-}
+std::string ResumableVtkSeries::text() const { return frame_list_text(frames_); }
 
 void ResumableVtkSeries::restore(const std::string& text, const std::filesystem::path& earlier_dir) {
-  std::vector<std::pair<Real, std::string>> frames;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    const auto space = line.find(' ');
-    if (space == std::string::npos || space + 1 >= line.size())
-      throw std::runtime_error("malformed frame list line '" + line + "'");
-    std::string file = line.substr(space + 1);
-    if (!earlier_dir.empty() && !std::filesystem::exists(dir_ / file) && std::filesystem::exists(earlier_dir / file))
-      file = std::filesystem::relative(earlier_dir / file, dir_).generic_string();
-    frames.emplace_back(std::strtod(line.c_str(), nullptr), std::move(file));
-  }
-  frames_ = std::move(frames);
+  frames_ = parse_frame_list(text, dir_, earlier_dir);
   write_file_atomically(pvd_path(), pvd_collection_xml(frames_));
 }
 

@@ -25,6 +25,14 @@ StepperOptions SceneRun::stepper(const CoreOptions& core, std::string_view progr
   return stepper_options(core, system(), program);
 }
 
+std::vector<std::int64_t> SceneRun::global_ids() const {
+  throw std::logic_error("this run is not distributed: no global ids");
+}
+
+std::vector<std::int64_t> SceneRun::take_share(const Checkpoint&) {
+  throw std::logic_error("this run is not distributed: it takes no share of a checkpoint");
+}
+
 std::vector<std::string> Scene::stepper_names() const { return core_stepper_names(); }
 
 void Scene::check_restart_run(const OptionParser& p, const std::string& checkpoint_run) const {
@@ -120,7 +128,7 @@ class SetupArming {
   bool armed_ = true;
 };
 
-TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming) {
+TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming, bool distributed) {
   TimeLoopHooks h;
   h.started = [&arming] { arming.end(); };  // the set-up is over: a stop now gets a checkpoint
   h.diagnostics = [&run](Real t, const Real* y, const StepperStats& st) { return run.diagnostics(t, y, st); };
@@ -128,6 +136,7 @@ TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming) {
   h.finished = [&run](Real t) { return run.finished(t); };
   h.root = [&run](Real t, const std::vector<int>& found) { return run.root(t, found); };
   h.state = run.saved_numbers();
+  if (distributed) h.global_ids = [&run] { return run.global_ids(); };  // checkpoints of the whole run
   if (run.changes_particles()) {
     h.after_step = [&run](Real t, const Real* y) { return run.after_step(t, y); };
     h.restart_layout = [&run](const Checkpoint& c) { return run.restart_layout(c); };
@@ -162,7 +171,8 @@ RunOutcome run_one(Scene& scene, const std::string& name, const ParsedRun& p, co
   RunOutcome out;
   out.run = scene.make_run(name, p.core);
   SceneRun& run = *out.run;
-  const TimeLoopHooks hooks = hooks_of(run, arming);
+  if (restart && scene.world().distributed()) run.take_share(*restart);  // collective: this rank's particles
+  const TimeLoopHooks hooks = hooks_of(run, arming, scene.world().distributed());
   TimeLoopSettings ts = default_settings(scene, name, p, dir, restart, run);
   run.settings(ts);
   if (lanes_and_threads(scene, p).first > 1) ts.progress_label = name;  // runs side by side: whose line
@@ -172,7 +182,8 @@ RunOutcome run_one(Scene& scene, const std::string& name, const ParsedRun& p, co
   // A restart takes its state from the checkpoint: the initial conditions are not built.
   std::vector<Real> y0 = restart ? std::vector<Real>(run.layout().size(), 0.0) : run.initial_state();
   const detail::PlannedCost& cost = p.costs.at(name);
-  if (cost.known && (!restart || restart->y.size() == y0.size())) {  // every rank: the line asks the system (collective)
+  // every rank alike: the line asks the system (collective); a distributed restart's state is the checkpoint's share
+  if (cost.known && (!restart || (!scene.world().distributed() && restart->y.size() == y0.size()))) {
     const std::string line = detail::first_line(scene.program(), name, cost, run, so, restart ? restart->t : 0,
                                                 restart ? restart->y.data() : y0.data(), p.core.t_end, ts.sample_every);
     if (speaker) std::fprintf(stderr, "%s\n", line.c_str());
@@ -287,13 +298,10 @@ class RootRecord {
 };
 
 // What a distributed run cannot do yet (exit 2 on every rank: every rank parses the same options).
-void check_distributed(const Scene& scene, const ParsedRun& p, bool restart) {
+void check_distributed(const Scene& scene) {
   if (!scene.world().distributed()) return;
   if (!scene.supports_distributed_runs())
     exit_usage_error(scene.program(), "", "this example does not run distributed (mpirun) yet");
-  if (restart) p.parser.fail("--restart", "checkpoints of distributed runs are not implemented yet");
-  if (p.control.checkpoint_every > 0)
-    p.parser.fail("--checkpoint-every", "checkpoints of distributed runs are not implemented yet");
 }
 
 }  // namespace
@@ -307,7 +315,7 @@ int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& worl
   const std::optional<Checkpoint> restart = load_restart_option(argc, argv, program);
   ParsedRun p(scene);
   parse(p, scene, argc, argv, restart ? &*restart : nullptr);
-  check_distributed(scene, p, restart.has_value());
+  check_distributed(scene);
   start_run(p.core, program);
   // run.json: options, version, start (distributed: rank 0's, written last)
   RootRecord record(world.rank() == 0, [&] { return start_run_record(p.parser, p.core.out, world.size()); });

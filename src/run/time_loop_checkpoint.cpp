@@ -4,6 +4,8 @@
 #include <stdexcept>
 
 #include "sphark/core/profile.hpp"
+#include "sphark/io/vtk_series.hpp"
+#include "sphark/parallel/global_state.hpp"
 #include "sphark/run/checkpoint.hpp"
 #include "time_loop_impl.hpp"
 
@@ -42,9 +44,14 @@ void TimeLoop::bind_checkpoint_scalars() {
 }
 
 void TimeLoop::restore(const Checkpoint& c) {
-  if (hooks_.restart_layout) layout_ = hooks_.restart_layout(c);
-  if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
-  y_ = c.y;
+  if (distributed()) {
+    take_share(c);
+  } else {
+    if (hooks_.restart_layout) layout_ = hooks_.restart_layout(c);
+    if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
+    y_ = c.y;
+    opts_.resume_data = c.stepper_data;
+  }
   t_ = c.t;
   for (auto& [name, ptr] : binds_) {
     // particle_evals (issue #17) is newer than the other counts: a checkpoint without it counts
@@ -60,14 +67,54 @@ void TimeLoop::restore(const Checkpoint& c) {
   if (c.scalar("checkpoint_every") != s_.checkpoint_every && s_.checkpoint_every > 0)
     next_checkpoint_ = grid_index_after(t_, s_.checkpoint_every) * s_.checkpoint_every;
   csv_.restore(c.text("diagnostics.csv"));
-  if (vtk_)  // frames_dir: absent in checkpoints of before 2026-12-02
-    vtk_->restore(c.text("frames"), c.has_text("frames_dir") ? std::filesystem::path(c.text("frames_dir")) : "");
+  // frames_dir: absent in checkpoints of before 2026-12-02
+  const std::filesystem::path earlier = c.has_text("frames_dir") ? std::filesystem::path(c.text("frames_dir")) : "";
+  if (vtk_) vtk_->restore(c.text("frames"), earlier);
+  if (pvtk_) pvtk_->restore(parse_frame_list(c.text("frames"), s_.frames_dir, earlier));
   opts_.initial_dt = c.last_dt;
-  opts_.resume_data = c.stepper_data;
+}
+
+// A distributed restart (checkpoint of any number of ranks, or of a serial run): the state and
+// the stepper's per-entry data of this rank's particles (hooks_.global_ids: the share the system
+// took before the loop).
+void TimeLoop::take_share(const Checkpoint& c) {
+  if (!hooks_.global_ids) throw std::logic_error("a distributed restart without a global_ids hook");
+  const std::size_t global = c.particles();
+  if (auto why = layout_mismatch(c, layout_.with_count(layout_.primary(), global)))
+    throw std::runtime_error("--restart: " + *why);
+  const std::vector<std::int64_t> ids = hooks_.global_ids();
+  if (ids.size() != layout_.particles()) throw std::logic_error("a distributed restart: the ids do not fit the layout");
+  const std::vector<int> components = field_components(layout_);
+  y_ = select_particles(c.y, components, global, ids);
+  opts_.resume_data.clear();
+  if (c.stepper_data.empty()) return;
+  if (c.stepper_data.size() != c.y.size() + 1)
+    throw std::runtime_error("--restart: the stepper data of the checkpoint is not one value per state entry + 1");
+  opts_.resume_data = select_particles({c.stepper_data.begin(), c.stepper_data.end() - 1}, components, global, ids);
+  opts_.resume_data.push_back(c.stepper_data.back());
+}
+
+// A distributed run's checkpoint: the whole run as a serial run of the same particles writes it,
+// assembled on rank 0 (c already holds this rank's values; the other ranks' c is then empty).
+void TimeLoop::gather_whole_run(Checkpoint& c) {
+  const Communicator& comm = opts_.communicator;
+  comm.check(layout_.species().size() == 1 && c.system_data.empty(),
+             "checkpoints of distributed runs hold one species and no system resume data");
+  comm.check(c.stepper_data.empty() || c.stepper_data.size() == y_.size() + 1,
+             "checkpoints of distributed runs: this stepper's resume data is not per state entry");
+  const std::vector<std::int64_t> ids = hooks_.global_ids();
+  const std::vector<int> components = field_components(layout_);
+  const auto global = static_cast<std::size_t>(comm.allreduce(static_cast<std::int64_t>(ids.size()), ReduceOp::Sum));
+  c.species = describe_layout(layout_.with_count(layout_.primary(), global));
+  c.y = gather_particles(comm, ids, y_, components);
+  if (c.stepper_data.empty()) return;
+  const Real tail = c.stepper_data.back();  // the leapfrog's: the derivative, then one time
+  c.stepper_data = gather_particles(comm, ids, {c.stepper_data.begin(), c.stepper_data.end() - 1}, components);
+  if (comm.rank() == 0) c.stepper_data.push_back(tail);
 }
 
 void TimeLoop::save(Real time) {
-  if (distributed()) {  // checkpoints of distributed runs: not yet (the options refuse them)
+  if (distributed() && !hooks_.global_ids) {  // a distributed run without checkpoints
     flush_csv();
     return;
   }
@@ -92,16 +139,19 @@ void TimeLoop::save(Real time) {
   c.set_text("run", s_.run);
   for (const auto& [k, v] : s_.texts) c.set_text(k, v);
   c.set_text("diagnostics.csv", csv_.text());
-  if (vtk_) {
-    c.set_text("frames", vtk_->text());
+  if (frames()) {
+    c.set_text("frames", vtk_ ? vtk_->text() : frame_list_text(pvtk_->frames()));
     c.set_text("frames_dir", std::filesystem::absolute(s_.frames_dir).string());
   }
   c.y = y_;
   c.stepper_data = stepper_->resume_data();
   c.system_data = system_.resume_data();
+  if (distributed()) gather_whole_run(c);
   flush_csv();
   res_.checkpoint = s_.checkpoint;
-  save_checkpoint(s_.checkpoint, c);
+  opts_.communicator.collectively([&] {
+    if (opts_.communicator.rank() == 0) save_checkpoint(s_.checkpoint, c);
+  });
 }
 
 // A checkpoint at the first sample at or after every multiple of checkpoint_every.

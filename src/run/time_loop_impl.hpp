@@ -45,11 +45,14 @@ class TimeLoop {
  private:
   void bind_checkpoint_scalars();
   void restore(const Checkpoint& c);
+  void take_share(const Checkpoint& c);
+  void gather_whole_run(Checkpoint& c);
   void bound_steps(OdeSystem& system);
   StepperStats stats() const { return base_.total(stepper_->stats()); }
   void save(Real time);
   // Distributed runs (StepperOptions::communicator with MPI): every rank writes its piece of a
-  // frame (parallel VTK), rank 0 the CSV; the stop poll is collective; no checkpoints yet.
+  // frame (parallel VTK), rank 0 the CSV and the checkpoints (with hooks_.global_ids: the whole
+  // run's state, gather_whole_run); the stop poll is collective.
   bool distributed() const { return opts_.communicator.distributed(); }
   bool frames() const { return vtk_ || pvtk_; }
   void write_frame(Real time);

@@ -31,6 +31,9 @@ class ParallelVtkSeriesWriter {
 
   std::filesystem::path pvd_path() const { return dir_ / (basename_ + ".pvd"); }
   const std::vector<std::pair<Real, std::string>>& frames() const { return frames_; }
+  // Collective: a restart continues the series of `frames` (parse_frame_list); rank 0 rewrites
+  // the .pvd, so frames after the restart continue the numbering.
+  void restore(std::vector<std::pair<Real, std::string>> frames);
 
  private:
   Communicator comm_;

@@ -48,4 +48,12 @@ std::string xml_escape(const std::string& s);
 // The .pvd text for the given (time, file) entries (file names XML-escaped, times as %.17g).
 std::string pvd_collection_xml(const std::vector<std::pair<Real, std::string>>& frames);
 
+// A series' frame list as a checkpoint keeps it: "t file" per line (t as %.17g), and its parse
+// (std::runtime_error for a malformed line). `dir`, `earlier_dir` (may be empty): a listed file
+// found in earlier_dir (the run that wrote the list) and not in dir (a restart into another
+// --out) is listed by its path relative to dir, so that the new .pvd finds every frame.
+std::string frame_list_text(const std::vector<std::pair<Real, std::string>>& frames);
+std::vector<std::pair<Real, std::string>> parse_frame_list(const std::string& text, const std::filesystem::path& dir,
+                                                           const std::filesystem::path& earlier_dir = {});
+
 }  // namespace sphark

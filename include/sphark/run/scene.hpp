@@ -73,6 +73,11 @@ class SceneRun {
   virtual bool changes_particles() const { return false; }
   virtual std::optional<TimeLoopHooks::Resize> after_step(Real /*t*/, const Real* /*y*/) { return std::nullopt; }
   virtual StateLayout restart_layout(const Checkpoint& /*c*/) { return layout(); }
+  // A distributed run (Scene::supports_distributed_runs): the global ids of this rank's particles
+  // in state order, and on a restart this rank's share of the checkpoint's particles, which the
+  // system then holds (TimeLoopHooks::global_ids, take_share).
+  virtual std::vector<std::int64_t> global_ids() const;
+  virtual std::vector<std::int64_t> take_share(const Checkpoint& c);
   // Where and how often it writes: the driver fills `s` (program, run, options, scene text,
   // t_end, sample/frame intervals from --output-every, <dir>/diagnostics.csv, <dir>/<name>_NNNNN.vtp,
   // <dir>/checkpoint.bin, run control) before this call; a scene changes what differs.

@@ -24,6 +24,7 @@
 // counts, the grid position, the CSV rows, the frame list, the caller's `state` scalars and
 // `texts`) goes into the checkpoint; a restart continues bit for bit with the leapfrog and any
 // fixed-step method whenever the system's rhs depends on y alone.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -105,6 +106,13 @@ struct TimeLoopHooks {
   // Optional, with after_step: on a restart, the system takes the checkpoint's species counts
   // and returns its layout (which must then match the checkpoint's).
   std::function<StateLayout(const Checkpoint& c)> restart_layout;
+  // Distributed runs (StepperOptions::communicator with MPI), required for their checkpoints:
+  // the global ids of this rank's particles in state order (0 .. N-1 over the ranks; one
+  // species). A checkpoint then holds the whole run as a serial run of the same particles writes
+  // it (rank 0 writes it; the stepper's per-entry resume data travels with the state), and a
+  // restart from one (of any number of ranks, or serial) takes the values of these ids: the
+  // caller has given the system its share of the checkpoint's particles (SceneRun::take_share).
+  std::function<std::vector<std::int64_t>()> global_ids;
   // Optional: called once the stepper exists, before the first output (the set-up is over: from
   // here on a stop signal is answered with a checkpoint).
   std::function<void()> started;

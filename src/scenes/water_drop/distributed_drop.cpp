@@ -1,41 +1,41 @@
 #include "sphark/scenes/water_drop/distributed_drop.hpp"
 
+#include <stdexcept>
+#include <string>
+
+#include "sphark/parallel/global_state.hpp"
 #include "sphark/parallel/migration.hpp"
 
 namespace sphark {
 
-namespace {
-// The entries of the particles `ids` of a field-major state of every particle.
-std::vector<Real> select(const std::vector<Real>& y, const StateLayout& all, const std::vector<std::int64_t>& ids) {
-  std::vector<Real> out;
-  for (const Field f : all.fields()) {
-    const std::size_t c = static_cast<std::size_t>(all.components(f));
-    for (const std::int64_t id : ids)
-      for (std::size_t k = 0; k < c; ++k) out.push_back(y[all.offset(f) + c * static_cast<std::size_t>(id) + k]);
-  }
-  return out;
-}
-
-std::vector<int> field_components(const StateLayout& L) {
-  std::vector<int> c;
-  for (const Field f : L.fields()) c.push_back(L.components(f));
-  return c;
-}
-}  // namespace
-
-// Every rank passes the whole drop to partition_rcb: the cuts are those of one copy (each
-// bin's weight P times over).
 DistributedDrop::DistributedDrop(const WaterDropConfig& config, Communicator comm)
     : drop_(make_water_drop(config)), comm_(std::move(comm)), global_(drop_.particles()) {
   const StateLayout all = drop_.model->layout();
-  const Real* x = drop_.y0.data() + all.offset(Field::Position);
+  own_domain_of(drop_.y0.data() + all.offset(Field::Position));
+  y_ = select_particles(drop_.y0, field_components(all), global_, ids_);
+  drop_.model->distribute(comm_, ids_);
+}
+
+// Every rank passes the positions of every particle to partition_rcb: the cuts are those of one
+// copy (each bin's weight P times over); this rank keeps the particles of its domain.
+void DistributedDrop::own_domain_of(const Real* x) {
   domains_ = partition_rcb<2>(comm_, x, nullptr, global_, std::nullopt);
   std::vector<int> owner(global_);
   domains_.owners(x, global_, owner.data());
+  ids_.clear();
   for (std::size_t a = 0; a < global_; ++a)
     if (owner[a] == comm_.rank()) ids_.push_back(static_cast<std::int64_t>(a));
-  y_ = select(drop_.y0, all, ids_);
-  drop_.model->distribute(comm_, ids_);
+}
+
+const std::vector<std::int64_t>& DistributedDrop::take_share(const std::vector<Real>& y_all) {
+  const StateLayout all = drop_.model->layout().with_count(Species::Gas, global_);
+  if (y_all.size() != all.size())
+    throw std::invalid_argument("DistributedDrop::take_share: a state of " + std::to_string(y_all.size()) +
+                                " values for " + std::to_string(global_) + " particles");
+  own_domain_of(y_all.data() + all.offset(Field::Position));
+  y_ = select_particles(y_all, field_components(all), global_, ids_);
+  drop_.model->set_particles(ids_);
+  return ids_;
 }
 
 std::size_t DistributedDrop::migrate(std::vector<Real>& y, std::vector<Real>* carried, bool repartition) {

@@ -109,10 +109,23 @@ ParticleFrame DropRun::frame(Real t, const Real* y) {
 
 // This rank's particles to their owners; the loop continues from the new state (Stepper::resize).
 std::optional<TimeLoopHooks::Resize> DropRun::after_step(Real, const Real* y) {
-  if (!dist_ || ++steps_ % kMigrateEvery != 0) return std::nullopt;
+  if (!dist_) return std::nullopt;
+  const long steps = ++steps_;
+  if (steps % kMigrateEvery != 0) return std::nullopt;
   std::vector<Real> state(y, y + layout().size());
-  dist_->migrate(state, nullptr, steps_ % kRepartitionEvery == 0);
+  dist_->migrate(state, nullptr, steps % kRepartitionEvery == 0);
   return TimeLoopHooks::Resize{layout(), std::move(state), water_drop_absolute_tolerances(*drop_, atol_), {}};
+}
+
+std::vector<std::int64_t> DropRun::global_ids() const {
+  if (!dist_) return SceneRun::global_ids();
+  return dist_->ids();
+}
+
+std::vector<std::int64_t> DropRun::take_share(const Checkpoint& c) {
+  if (!dist_) return SceneRun::take_share(c);
+  steps_ = c.scalar("steps");  // the migration schedule continues
+  return dist_->take_share(c.y);
 }
 
 DropRunSummary DropRun::summary(const TimeLoopResult& result) const {

@@ -46,6 +46,10 @@ class DropRun final : public SceneRun {
   bool changes_particles() const override { return dist_ != nullptr; }
   std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y) override;
   static constexpr long kMigrateEvery = 50, kRepartitionEvery = 200;
+  // Distributed: checkpoints of the whole drop, and a restart on any number of ranks takes this
+  // rank's RCB domain of the checkpoint's positions (DistributedDrop::take_share).
+  std::vector<std::int64_t> global_ids() const override;
+  std::vector<std::int64_t> take_share(const Checkpoint& c) override;
 
   // The summary of the run (complete after the loop ended: pass its result).
   DropRunSummary summary(const TimeLoopResult& result) const;
@@ -57,7 +61,7 @@ class DropRun final : public SceneRun {
   WaterDrop* drop_;                        // the one of the two in use
   Real diagnostics_every_, frame_every_;
   Real atol_ = 0;    // of the stepper: the per-entry tolerances after a migration
-  long steps_ = 0;   // distributed: steps since the start (the migration schedule)
+  long steps_ = 0;   // distributed: steps since t = 0 (the migration schedule; a restart: the checkpoint's)
   DropRunSummary sum_;
   // the numbers of the accuracy summary accumulated sample by sample (saved in checkpoints)
   Real samples_ = 0, e0_ = 0, div_integral_ = 0, t_prev_ = 0, div_prev_ = 0, prev_exact_a_ = 0, prev_err_x_ = 0,

@@ -1,9 +1,12 @@
-// compare_frames <serial.vtp> <distributed.pvtp>: the same particles with the same values, bit
-// for bit. The serial frame's particle a has global id a; the distributed frame's pieces carry
-// the ids (Int64 "id"). Exit 0 and "frames equal: ..." if every point and every array of the
-// serial frame is found unchanged for every id exactly once; exit 1 with the first difference.
+// compare_frames <a.vtp|a.pvtp> <b.vtp|b.pvtp>: the same particles with the same values, bit for
+// bit. A serial frame (.vtp) holds particle a = global id a; a distributed frame (.pvtp) carries
+// the ids of its pieces' points (Int64 "id", which is not compared as a value). Exit 0 and
+// "frames equal: ..." if every point and every array of the first frame is found unchanged, for
+// every id exactly once, in the second; exit 1 with the first difference.
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "sphark/io/vtp_reader.hpp"
@@ -11,16 +14,38 @@
 using namespace sphark;
 
 namespace {
-int differ(const char* what) {
-  std::printf("frames differ: %s\n", what);
+int differ(const std::string& what) {
+  std::printf("frames differ: %s\n", what.c_str());
   return 1;
 }
 
-// Is value k of array `name` of serial point a equal to that of distributed point b?
+bool is_pvtp(const std::string& path) { return path.size() > 5 && path.compare(path.size() - 5, 5, ".pvtp") == 0; }
+
+// The frame and, for each global id, the index of its point (every id once).
+struct Frame {
+  VtpContents contents;
+  std::vector<std::size_t> point_of_id;
+};
+
+Frame read_frame(const std::string& path) {
+  Frame f{is_pvtp(path) ? read_pvtp(path) : read_vtp(path), {}};
+  const VtpArray* ids = f.contents.find("id");
+  constexpr std::size_t none = static_cast<std::size_t>(-1);
+  f.point_of_id.assign(f.contents.count, none);
+  for (std::size_t p = 0; p < f.contents.count; ++p) {
+    const auto id = ids ? static_cast<std::size_t>(ids->values[p]) : p;
+    if (id >= f.contents.count || f.point_of_id[id] != none) throw std::runtime_error(path + ": an id missing or twice");
+    f.point_of_id[id] = p;
+  }
+  return f;
+}
+
+// Every point and array value (but the ids) of point a of s equal to those of point b of d?
 bool equal_points(const VtpContents& s, const VtpContents& d, std::size_t a, std::size_t b) {
   for (int k = 0; k < 3; ++k)
     if (s.points[3 * a + k] != d.points[3 * b + k]) return false;
   for (const VtpArray& arr : s.arrays) {
+    if (arr.name == "id") continue;
     const VtpArray* other = d.find(arr.name);
     const std::size_t c = static_cast<std::size_t>(arr.components);
     for (std::size_t k = 0; k < c; ++k)
@@ -31,23 +56,22 @@ bool equal_points(const VtpContents& s, const VtpContents& d, std::size_t a, std
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) return differ("usage: compare_frames <serial.vtp> <distributed.pvtp>");
+  if (argc != 3) return differ("usage: compare_frames <a.vtp|a.pvtp> <b.vtp|b.pvtp>");
   try {
-    const VtpContents s = read_vtp(argv[1]), d = read_pvtp(argv[2]);
-    const VtpArray* ids = d.find("id");
-    if (!ids || s.count != d.count) return differ("no ids, or another number of particles");
-    for (const VtpArray& arr : s.arrays)
-      if (!d.find(arr.name) || d.find(arr.name)->components != arr.components) return differ("arrays");
-    std::vector<int> seen(s.count, 0);
-    for (std::size_t b = 0; b < d.count; ++b) {
-      const auto id = static_cast<std::size_t>(ids->values[b]);
-      if (id >= s.count || seen[id]++) return differ("an id missing or twice");
-      if (!equal_points(s, d, id, b)) {
+    const Frame s = read_frame(argv[1]), d = read_frame(argv[2]);
+    if (s.contents.count != d.contents.count) return differ("another number of particles");
+    std::size_t compared = 0;
+    for (const VtpArray& arr : s.contents.arrays) {
+      if (arr.name == "id") continue;
+      if (!d.contents.find(arr.name) || d.contents.find(arr.name)->components != arr.components) return differ("arrays");
+      ++compared;
+    }
+    for (std::size_t id = 0; id < s.contents.count; ++id)
+      if (!equal_points(s.contents, d.contents, s.point_of_id[id], d.point_of_id[id])) {
         std::printf("frames differ at particle %zu\n", id);
         return 1;
       }
-    }
-    std::printf("frames equal: %zu particles, %zu arrays\n", s.count, s.arrays.size());
+    std::printf("frames equal: %zu particles, %zu arrays\n", s.contents.count, compared);
     return 0;
   } catch (const std::exception& e) {
     return differ(e.what());

@@ -2,19 +2,10 @@
 #       -DFRAME=<run>/drop_NNNNN -DCOMPARE=<compare_frames> -P compare_runs.cmake
 # Runs the example serially into OUT/serial and under mpirun into OUT/distributed (both must
 # exit 0), then compares FRAME.vtp of the one with FRAME.pvtp of the other (compare_frames).
+include(${CMAKE_CURRENT_LIST_DIR}/run_mode.cmake)
 file(REMOVE_RECURSE ${OUT})
-foreach(mode serial distributed)
-  if(mode STREQUAL serial)
-    set(cmd ${SERIAL})
-  else()
-    set(cmd ${DISTRIBUTED})
-  endif()
-  execute_process(COMMAND ${cmd} --out ${OUT}/${mode} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
-                  TIMEOUT 240)
-  if(NOT rc STREQUAL "0")
-    message(FATAL_ERROR "${mode} run: exit code ${rc}\n${out}${err}")
-  endif()
-endforeach()
+run_mode(serial ${OUT}/serial ${SERIAL})
+run_mode(distributed ${OUT}/distributed ${DISTRIBUTED})
 execute_process(COMMAND ${COMPARE} ${OUT}/serial/${FRAME}.vtp ${OUT}/distributed/${FRAME}.pvtp RESULT_VARIABLE rc
                 OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc STREQUAL "0")

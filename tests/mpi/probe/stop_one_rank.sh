@@ -2,9 +2,9 @@
 # stop_one_rank.sh <mpiexec> <np> <water_drop> <out>: SIGINT to one rank of a distributed
 # water_drop run only. The stop poll is collective (time loop, before every RHS): every rank
 # must stop at the same step, the run exit with 130, say "stopped by signal 2" and record
-# "stopped" in run.json.
+# "stopped" in run.json; its checkpoint (the whole run's, rank 0 writes it) continues on 3 ranks.
 MPIEXEC=$1 NP=$2 DROP=$3 OUT=$4
-rm -rf "$OUT" "$OUT.log"
+rm -rf "$OUT" "$OUT.log" "$OUT.restarted" "$OUT.restarted.log"
 "$MPIEXEC" --oversubscribe --allow-run-as-root -np "$NP" "$DROP" --no-render --threads 1 --scheme delta-sph \
   --cleaning on --out "$OUT" > "$OUT.log" 2>&1 &
 RUN=$!
@@ -19,4 +19,7 @@ cat "$OUT.log"
 [ "$rc" -eq 130 ] || { echo "exit code $rc, expected 130"; exit 1; }
 grep -q "cleaned run stopped by signal 2 at t=" "$OUT.log" || { echo "no stop message"; exit 1; }
 grep -q '"outcome": "stopped"' "$OUT/run.json" || { echo "run.json: not stopped"; exit 1; }
-echo "every rank stopped (exit 130)"
+grep -q "continue with --restart" "$OUT.log" || { echo "no checkpoint"; exit 1; }
+"$MPIEXEC" --oversubscribe --allow-run-as-root -np 3 "$DROP" --restart "$OUT/cleaned/checkpoint.bin" --t-end 0.001 \
+  --out "$OUT.restarted" > "$OUT.restarted.log" 2>&1 || { cat "$OUT.restarted.log"; echo "the 3-rank restart failed"; exit 1; }
+echo "every rank stopped (exit 130); the checkpoint continued on 3 ranks to t = 0.001"

@@ -32,11 +32,17 @@ class DistributedDrop {
   // with y, e.g. the leapfrog's carried kick); migrate() checks count, ids, mass and momentum.
   // The model then holds this rank's new particles. Returns the particles this rank sent.
   std::size_t migrate(std::vector<Real>& y, std::vector<Real>* carried, bool repartition);
+  // Collective. A restart: the whole drop's field-major state (every particle, by global id, as
+  // a checkpoint holds it) partitioned anew; this rank keeps the particles of its domain (state()
+  // their values, the model holds them). Returns their ids.
+  const std::vector<std::int64_t>& take_share(const std::vector<Real>& y_all);
   // The same for state(), and the stepper continues from this rank's new state; atol > 0: a run
   // with per-entry tolerances (water_drop_absolute_tolerances of atol).
   std::size_t migrate(Stepper& stepper, bool repartition, Real atol = 0);
 
  private:
+  void own_domain_of(const Real* x);  // every particle's positions: domains_ and ids_
+
   WaterDrop drop_;
   Communicator comm_;
   Decomposition<2> domains_;
