@@ -138,7 +138,9 @@ TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming, bool distributed) {
   h.state = run.saved_numbers();
   if (distributed) h.global_ids = [&run] { return run.global_ids(); };  // checkpoints of the whole run
   if (run.changes_particles()) {
-    h.after_step = [&run](Real t, const Real* y) { return run.after_step(t, y); };
+    h.after_step = [&run](Real t, const Real* y, const TimeLoopHooks::CarriedData& carried) {
+      return run.after_step(t, y, carried);
+    };
     h.restart_layout = [&run](const Checkpoint& c) { return run.restart_layout(c); };
   }
   return h;

@@ -28,30 +28,40 @@ Real snap_to_grid(Real t_end, Real every) {
   return k >= 1 && std::abs(t_end / every - k) < 1e-9 ? k * every : t_end;
 }
 
+// The stepper continues from the state after_step returned: its carried data moved along (given,
+// or by the reordering entry_source), else evaluated afresh. Present but empty (a rank left with
+// no particles) still counts as given: every rank of a distributed run must take the same branch.
+void resize_stepper(Stepper& stepper, TimeLoopHooks::Resize& r, StateLayout& layout, std::vector<Real>& y) {
+  if (r.y.size() != r.layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
+  layout = std::move(r.layout);
+  y = std::move(r.y);
+  std::optional<std::vector<Real>> carried = std::move(r.carried);
+  if (carried && carried->size() != y.size()) throw std::logic_error("after_step: carried data that does not fit the new state");
+  if (!r.entry_source.empty()) {
+    if (r.entry_source.size() != y.size()) throw std::logic_error("after_step: a reordering of another size");
+    const std::vector<Real> old = stepper.carried_data();
+    if (old.size() == y.size()) {
+      carried.emplace(y.size());
+      for (std::size_t k = 0; k < y.size(); ++k) (*carried)[k] = old[r.entry_source[k]];
+    }
+  }
+  static Real none = 0;  // the address of an empty but present carried array
+  const Real* carried_data = carried ? (carried->empty() ? &none : carried->data()) : nullptr;
+  stepper.resize({y.data(), r.atol.empty() ? nullptr : r.atol.data(), carried_data});
+}
+
 // Advances to t_out: in one call, or (with hooks.after_step) step by step, resizing the state and
 // the stepper when the hook asks for it; `progress` is called after each step.
 AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_out, std::vector<Real>& y, Real& t,
                          StateLayout& layout, const std::function<void()>& progress) {
   if (!hooks.after_step) return stepper.advance(t_out, y.data(), t);
+  const TimeLoopHooks::CarriedData carried_now = [&stepper] { return stepper.carried_data(); };
   for (;;) {
     const AdvanceStatus st = stepper.step(t_out, y.data(), t);
     progress();
     if (st != AdvanceStatus::Stepped && st != AdvanceStatus::Reached) return st;
-    if (std::optional<TimeLoopHooks::Resize> r = hooks.after_step(t, y.data())) {
-      if (r->y.size() != r->layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
-      layout = std::move(r->layout);
-      y = std::move(r->y);
-      std::vector<Real> carried;
-      if (!r->entry_source.empty()) {
-        if (r->entry_source.size() != y.size()) throw std::logic_error("after_step: a reordering of another size");
-        const std::vector<Real> old = stepper.carried_data();
-        if (old.size() == y.size()) {
-          carried.resize(y.size());
-          for (std::size_t k = 0; k < y.size(); ++k) carried[k] = old[r->entry_source[k]];
-        }
-      }
-      stepper.resize({y.data(), r->atol.empty() ? nullptr : r->atol.data(), carried.empty() ? nullptr : carried.data()});
-    }
+    if (std::optional<TimeLoopHooks::Resize> r = hooks.after_step(t, y.data(), carried_now))
+      resize_stepper(stepper, *r, layout, y);
     if (st == AdvanceStatus::Reached) return st;
   }
 }

@@ -209,9 +209,9 @@ TEST(GravitatingSphere, AColdCollapseFormsASinkConservingMassAndMomenta) {
   h.state = run.saved_numbers();
   int events = 0;
   Real worst[3] = {0, 0, 0};  // the changes over their bounds
-  h.after_step = [&](Real t, const Real* y) {
+  h.after_step = [&](Real t, const Real* y, const TimeLoopHooks::CarriedData& carried) {
     const Totals before = totals(s, y);
-    std::optional<TimeLoopHooks::Resize> r = run.after_step(t, y);
+    std::optional<TimeLoopHooks::Resize> r = run.after_step(t, y, carried);
     if (r) {
       ++events;
       const Totals after = totals(s, r->y.data());

@@ -80,7 +80,7 @@ Outcome run(const std::string& method, bool remove, const std::filesystem::path&
   h.diagnostics = [](Real t, const Real*, const StepperStats&) { return std::vector<Real>{t}; };
   bool removed = false;
   if (remove)
-    h.after_step = [&](Real t, const Real* y) -> std::optional<TimeLoopHooks::Resize> {
+    h.after_step = [&](Real t, const Real* y, const TimeLoopHooks::CarriedData&) -> std::optional<TimeLoopHooks::Resize> {
       if (removed || t < 0.5) return std::nullopt;
       removed = true;
       const StateLayout from = sys.layout(), to = from.with_count(Species::Gas, 3);

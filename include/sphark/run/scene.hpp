@@ -71,7 +71,10 @@ class SceneRun {
   // A run whose particle set changes between steps (sink particles created, gas accreted): the
   // loop then steps one by one and calls after_step (TimeLoopHooks::after_step, restart_layout).
   virtual bool changes_particles() const { return false; }
-  virtual std::optional<TimeLoopHooks::Resize> after_step(Real /*t*/, const Real* /*y*/) { return std::nullopt; }
+  virtual std::optional<TimeLoopHooks::Resize> after_step(Real /*t*/, const Real* /*y*/,
+                                                          const TimeLoopHooks::CarriedData& /*carried*/) {
+    return std::nullopt;
+  }
   virtual StateLayout restart_layout(const Checkpoint& /*c*/) { return layout(); }
   // A distributed run (Scene::supports_distributed_runs): the global ids of this rank's particles
   // in state order, and on a restart this rank's share of the checkpoint's particles, which the

@@ -91,18 +91,24 @@ struct TimeLoopHooks {
   // Named run-loop numbers saved in checkpoints and restored on restart (bound by pointer).
   std::vector<std::pair<std::string, Real*>> state;
   // Optional: called after every step (the loop then steps one by one, Stepper::step) with the
-  // state at t; a system whose particle count changes (sinks created, gas accreted) returns its
-  // new layout and state, which the stepper then continues from (Stepper::resize).
+  // state at t and a getter of the stepper's carried data there (Stepper::carried_data: the
+  // leapfrog's derivative; empty for ARKODE); a system whose particle count changes (sinks
+  // created, gas accreted, particles migrating to other ranks) returns its new layout and state,
+  // which the stepper then continues from (Stepper::resize).
   struct Resize {
     StateLayout layout;
     std::vector<Real> y;
     std::vector<Real> atol;  // per entry of the new state when the run uses per-entry tolerances
     // A reordering (same entries, another order): new entry k is old entry entry_source[k]; the
     // stepper's carried data (Stepper::carried_data) then moves with the entries. Empty: the
-    // stepper starts afresh at y (Stepper::resize).
+    // stepper starts afresh at y (Stepper::resize), unless `carried` is given.
     std::vector<std::size_t> entry_source;
+    // The carried data of the new state, one value per entry (e.g. migrated with it; a rank left
+    // without particles passes an empty one: every rank of a distributed run the same choice).
+    std::optional<std::vector<Real>> carried;
   };
-  std::function<std::optional<Resize>(Real t, const Real* y)> after_step;
+  using CarriedData = std::function<std::vector<Real>()>;
+  std::function<std::optional<Resize>(Real t, const Real* y, const CarriedData& carried)> after_step;
   // Optional, with after_step: on a restart, the system takes the checkpoint's species counts
   // and returns its layout (which must then match the checkpoint's).
   std::function<StateLayout(const Checkpoint& c)> restart_layout;

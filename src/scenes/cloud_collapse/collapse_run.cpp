@@ -76,7 +76,8 @@ void CollapseRun::settings(TimeLoopSettings& s) {
   dir_ = s.frames_dir;
 }
 
-std::optional<TimeLoopHooks::Resize> CollapseRun::after_step(Real t, const Real* y) {
+std::optional<TimeLoopHooks::Resize> CollapseRun::after_step(Real t, const Real* y,
+                                                           const TimeLoopHooks::CarriedData&) {
   std::optional<TimeLoopHooks::Resize> r = sinks_.after_step(cloud_.scheme, t, y);
   if (sinks_.created()) {
     std::fprintf(stderr, "cloud_collapse: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",

@@ -25,7 +25,8 @@ class CollapseRun final : public SceneRun {
   ParticleFrame frame(Real t, const Real* y) override;
   std::vector<std::pair<std::string, Real*>> saved_numbers() override;
   bool changes_particles() const override { return true; }
-  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y) override;
+  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
+                                                  const TimeLoopHooks::CarriedData& carried) override;
   StateLayout restart_layout(const Checkpoint& c) override;
   void settings(TimeLoopSettings& s) override;
 

@@ -72,7 +72,8 @@ std::vector<std::pair<std::string, Real*>> GravitatingSphereRun::saved_numbers()
   return sinks_.saved_numbers();
 }
 
-std::optional<TimeLoopHooks::Resize> GravitatingSphereRun::after_step(Real t, const Real* y) {
+std::optional<TimeLoopHooks::Resize> GravitatingSphereRun::after_step(Real t, const Real* y,
+                                                                    const TimeLoopHooks::CarriedData&) {
   std::optional<TimeLoopHooks::Resize> r = sinks_.after_step(sphere_.scheme, t, y);
   if (sinks_.created())
     std::fprintf(stderr, "gravitating_sphere: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",

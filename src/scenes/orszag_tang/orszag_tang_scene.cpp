@@ -37,7 +37,7 @@ class OrszagTangRun final : public SceneRun {
   void settings(TimeLoopSettings& s) override { s.progress_interval = 10; }
   // the flow scrambles the particles: the state re-sorted when it pays (run/state_resort.hpp)
   bool changes_particles() const override { return resort_.threshold > 0; }
-  std::optional<TimeLoopHooks::Resize> after_step(Real, const Real* y) override {
+  std::optional<TimeLoopHooks::Resize> after_step(Real, const Real* y, const TimeLoopHooks::CarriedData&) override {
     return resort_if_scrambled<2>(ot_.scheme, ot_.scheme.layout(), y, resort_, std::optional(box_));
   }
 

@@ -108,13 +108,17 @@ ParticleFrame DropRun::frame(Real t, const Real* y) {
 }
 
 // This rank's particles to their owners; the loop continues from the new state (Stepper::resize).
-std::optional<TimeLoopHooks::Resize> DropRun::after_step(Real, const Real* y) {
+std::optional<TimeLoopHooks::Resize> DropRun::after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) {
   if (!dist_) return std::nullopt;
   const long steps = ++steps_;
   if (steps % kMigrateEvery != 0) return std::nullopt;
-  std::vector<Real> state(y, y + layout().size());
-  dist_->migrate(state, nullptr, steps % kRepartitionEvery == 0);
-  return TimeLoopHooks::Resize{layout(), std::move(state), water_drop_absolute_tolerances(*drop_, atol_), {}};
+  // the leapfrog's derivative moves along (every rank alike, also one left without particles)
+  std::vector<Real> state(y, y + layout().size()), kick = carried();
+  const bool with_kick = world_.allreduce(std::int64_t(kick.empty() ? 0 : 1), ReduceOp::Max) == 1;
+  dist_->migrate(state, with_kick ? &kick : nullptr, steps % kRepartitionEvery == 0);
+  TimeLoopHooks::Resize r{layout(), std::move(state), water_drop_absolute_tolerances(*drop_, atol_), {}, std::nullopt};
+  if (with_kick) r.carried = std::move(kick);
+  return r;
 }
 
 std::vector<std::int64_t> DropRun::global_ids() const {

@@ -44,7 +44,8 @@ class DropRun final : public SceneRun {
   // Distributed: every kMigrateEvery steps the particles move to their RCB owners (the domains
   // recomputed every kRepartitionEvery steps).
   bool changes_particles() const override { return dist_ != nullptr; }
-  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y) override;
+  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
+                                                  const TimeLoopHooks::CarriedData& carried) override;
   static constexpr long kMigrateEvery = 50, kRepartitionEvery = 200;
   // Distributed: checkpoints of the whole drop, and a restart on any number of ranks takes this
   // rank's RCB domain of the checkpoint's positions (DistributedDrop::take_share).

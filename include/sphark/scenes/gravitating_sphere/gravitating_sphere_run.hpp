@@ -33,7 +33,8 @@ class GravitatingSphereRun final : public SceneRun {
   // Sinks (only with GravitatingSphereParams::sinks: without, the run steps as before, advance()).
   bool changes_particles() const override { return p_.sinks; }
   std::vector<std::pair<std::string, Real*>> saved_numbers() override;
-  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y) override;
+  std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
+                                                  const TimeLoopHooks::CarriedData& carried) override;
   StateLayout restart_layout(const Checkpoint& c) override;
 
   GravitatingSphere& sphere() { return sphere_; }
