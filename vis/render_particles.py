@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-r"""Render sphark particle frames (.vtp, or frames of a .pvd series) to PNG.
+r"""Render sphark particle frames (.vtp, or frames of a .pvd series: .vtp or .pvtp) to PNG.
 
 VTK renders the points offscreen (vtkRenderWindow, SetOffScreenRendering(1), parallel
 projection onto a known world rectangle); matplotlib frames that image with true x/y axes, a
@@ -33,10 +33,10 @@ def fail(msg):
 
 
 def series_frames(path):
-    """[(time or None, vtp path)] for a .pvd, or [(None, path)] for a .vtp."""
+    """[(time or None, frame path)] for a .pvd, or [(None, path)] for a .vtp or .pvtp."""
     if not os.path.isfile(path):
         fail(f"input: no file '{path}'")
-    if path.endswith(".vtp"):
+    if path.endswith(".vtp") or path.endswith(".pvtp"):
         return [(None, path)]
     if not path.endswith(".pvd"):
         fail(f"input: '{path}' is neither .vtp nor .pvd")
@@ -59,7 +59,8 @@ def pick(frames, index):
 
 
 def load(vtk, time, path):
-    reader = vtk.vtkXMLPolyDataReader()
+    # a distributed run's frames are .pvtp (one piece per rank, merged by the parallel reader)
+    reader = vtk.vtkXMLPPolyDataReader() if path.endswith(".pvtp") else vtk.vtkXMLPolyDataReader()
     if not os.path.isfile(path) or not reader.CanReadFile(path):
         fail(f"input: cannot read '{path}'")
     reader.SetFileName(path)

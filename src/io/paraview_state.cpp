@@ -46,7 +46,7 @@ Series scan_series(const fs::path& dir, const fs::path& pvd, const std::vector<s
   if (s.frames.empty()) throw std::runtime_error("write_paraview_state: '" + (dir / pvd).string() + "' has no frames");
   for (const auto& [t, file] : s.frames) {
     const fs::path path = dir / pvd.parent_path() / file;
-    const VtpContents f = read_vtp(path);
+    const VtpContents f = read_frame(path);  // .vtp, or a distributed run's .pvtp
     if (s.particles == 0) s.particles = f.count;
     for (std::size_t i = 0; i < f.count; ++i)
       for (int c = 0; c < 3; ++c) s.box[c].add(f.points[3 * i + c]);

@@ -81,4 +81,8 @@ VtpContents read_pvtp(const std::filesystem::path& path) {
   return read_with<vtkXMLPPolyDataReader>(path, "read_pvtp", ".pvtp");
 }
 
+VtpContents read_frame(const std::filesystem::path& path) {
+  return path.extension() == ".pvtp" ? read_pvtp(path) : read_vtp(path);
+}
+
 }  // namespace sphark

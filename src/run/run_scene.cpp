@@ -341,7 +341,7 @@ int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& worl
       done.push_back(p.runs[i]);
       if (status == 0) status = outcomes[i].status, why = outcomes[i].why;  // the first run that did not end ok
     }
-    if (!world.distributed()) write_paraview_states(scene, p.core.out, done);  // (they read serial frames)
+    if (world.rank() == 0) write_paraview_states(scene, p.core.out, done);  // (serial or parallel frames)
     const int report = scene.report(p.core, p.runs, status == 0);
     if (const int sig = stop_requested(); sig != 0 && status == 0) {  // after a run ended: its outputs are whole
       std::fprintf(stderr, "%s: stopped by signal %d after %zu of %zu runs ended\n", program.c_str(), sig, done.size(),

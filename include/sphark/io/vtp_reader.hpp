@@ -35,4 +35,7 @@ VtpContents read_vtp(const std::filesystem::path& path);
 // all pieces merged, in piece order. Field data (the time) is not part of a .pvtp: time unset.
 VtpContents read_pvtp(const std::filesystem::path& path);
 
+// A frame of a series, serial or distributed: read_pvtp for a .pvtp, read_vtp otherwise.
+VtpContents read_frame(const std::filesystem::path& path);
+
 }  // namespace sphark

@@ -147,7 +147,7 @@ int WaterDropScene::report(const CoreOptions& core, const std::vector<std::strin
               core.dt, core.t_end);
   for (const auto& [label, s] : results_) print_summary(label, s);
   write_drop_summary(core.out, results_);
-  if (core.render && !world().distributed()) {
+  if (core.render) {  // (distributed: rank 0, from the parallel frames)
     std::vector<std::string> pending;
     for (const auto& [label, s] : results_)
       if (run_pictures_pending(label)) pending.push_back(label);
@@ -155,15 +155,11 @@ int WaterDropScene::report(const CoreOptions& core, const std::vector<std::strin
   }
   std::string runs;
   for (const auto& [label, s] : results_) runs += (runs.empty() ? "" : ",") + label;
-  if (world().distributed()) {  // parallel VTK, no pictures or ParaView state
-    std::printf("\noutputs in %s/{%s}: diagnostics.csv, drop.pvd (+ drop_*.pvtp, one .vtp per rank); summary.csv\n",
-                core.out.c_str(), runs.c_str());
-    return 0;
-  }
-  std::printf("\noutputs in %s/{%s}: diagnostics.csv, drop.pvd (+ drop_*.vtp); summary.csv, *.png\n"
+  std::printf("\noutputs in %s/{%s}: diagnostics.csv, drop.pvd (+ drop_*.%s); summary.csv, *.png\n"
               "open in ParaView: cd %s && paraview --state=view.pvsm  (or paraview %s/%s/drop.pvd; colour by density,"
               " pressure, div_v, psi)\n",
-              core.out.c_str(), runs.c_str(), core.out.c_str(), core.out.c_str(), results_.back().first.c_str());
+              core.out.c_str(), runs.c_str(), world().distributed() ? "pvtp, one .vtp per rank" : "vtp",
+              core.out.c_str(), core.out.c_str(), results_.back().first.c_str());
   return 0;
 }
 

@@ -19,16 +19,14 @@ int differ(const std::string& what) {
   return 1;
 }
 
-bool is_pvtp(const std::string& path) { return path.size() > 5 && path.compare(path.size() - 5, 5, ".pvtp") == 0; }
-
 // The frame and, for each global id, the index of its point (every id once).
 struct Frame {
   VtpContents contents;
   std::vector<std::size_t> point_of_id;
 };
 
-Frame read_frame(const std::string& path) {
-  Frame f{is_pvtp(path) ? read_pvtp(path) : read_vtp(path), {}};
+Frame indexed_frame(const std::string& path) {
+  Frame f{read_frame(path), {}};
   const VtpArray* ids = f.contents.find("id");
   constexpr std::size_t none = static_cast<std::size_t>(-1);
   f.point_of_id.assign(f.contents.count, none);
@@ -58,7 +56,7 @@ bool equal_points(const VtpContents& s, const VtpContents& d, std::size_t a, std
 int main(int argc, char** argv) {
   if (argc != 3) return differ("usage: compare_frames <a.vtp|a.pvtp> <b.vtp|b.pvtp>");
   try {
-    const Frame s = read_frame(argv[1]), d = read_frame(argv[2]);
+    const Frame s = indexed_frame(argv[1]), d = indexed_frame(argv[2]);
     if (s.contents.count != d.contents.count) return differ("another number of particles");
     std::size_t compared = 0;
     for (const VtpArray& arr : s.contents.arrays) {
