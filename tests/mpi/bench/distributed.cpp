@@ -136,7 +136,7 @@ BENCHMARK(Rcb)->Arg(100000)->Arg(1000000)->Iterations(5)->UseManualTime()->Unit(
 BENCHMARK(Owners)->Arg(100000)->Arg(1000000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(Migrate)->Arg(100000)->Arg(1000000)->Iterations(3)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(HaloBuild)->Arg(100000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(HaloExchange)->Arg(100000)->Iterations(50)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(HaloExchange)->Arg(10000)->Arg(100000)->Arg(1000000)->Iterations(50)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(Allreduce)->Arg(1)->Arg(8)->Iterations(2000)->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(Wrms)->Args({100000, 0})->Args({100000, 1})->Iterations(200)->UseManualTime()->Unit(benchmark::kMicrosecond);
 
