@@ -187,7 +187,7 @@ std::size_t NeighbourSearch<D>::append_row(std::size_t i, const MinimumImage<D>&
 
 // The offsets from the row lengths, then each thread's rows copied to their place in the list.
 template <int D>
-void NeighbourSearch<D>::join_rows(const std::vector<std::uint32_t>* rows, int team) {
+void NeighbourSearch<D>::join_rows(const std::vector<std::uint32_t>* rows, int team, std::size_t with_rows) {
   const std::size_t n = n_;
   for (std::size_t i = 0; i < n; ++i) list_.offsets[i + 1] += list_.offsets[i];
   const std::size_t pairs = list_.offsets[n];
@@ -195,15 +195,16 @@ void NeighbourSearch<D>::join_rows(const std::vector<std::uint32_t>* rows, int t
   list_.indices.resize(pairs);
 #pragma omp parallel for schedule(static, 1)
   for (int t = 0; t < team; ++t) {  // thread t's rows: rows[t][0 .. its rows' length)
-    const std::size_t first = list_.offsets[n * t / team], end = list_.offsets[n * (t + 1) / team];
+    const std::size_t first = list_.offsets[with_rows * t / team], end = list_.offsets[with_rows * (t + 1) / team];
     std::copy_n(rows[t].begin(), end - first, list_.indices.begin() + static_cast<std::ptrdiff_t>(first));
   }
 }
 
 template <int D>
 void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key,
-                               const Real* radii) {
+                               const Real* radii, std::size_t rows_wanted) {
   check_build(n, radius);
+  const std::size_t with_rows = std::min(rows_wanted, n);
   const std::size_t capacity_before = capacity();
 
   radius_ = radius;
@@ -236,7 +237,7 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
 #pragma omp single
     team = nt;
     // Contiguous chunk per thread: the rows of a thread are consecutive in the final list.
-    const std::size_t first = n * t / nt, last = n * (t + 1) / nt;
+    const std::size_t first = with_rows * t / nt, last = with_rows * (t + 1) / nt;
     std::size_t len = 0;
     for (std::size_t i = first; i < last; ++i) {
       const std::size_t row_start = len;
@@ -244,7 +245,8 @@ void NeighbourSearch<D>::build(const Real* x, std::size_t n, Real radius, const 
       list_.offsets[i + 1] = len - row_start;
     }
   }
-  join_rows(rows, team);
+  std::fill(list_.offsets.begin() + static_cast<std::ptrdiff_t>(with_rows) + 1, list_.offsets.end(), 0);  // empty rows
+  join_rows(rows, team, with_rows);
   if (capacity() != capacity_before) ++allocations_;
 }
 

@@ -62,6 +62,38 @@ TEST(NeighbourSearch, MatchesBruteForcePeriodic) {
   check<3>(true);
 }
 
+// rows = k: the first k particles' rows are those of a full build (the others among their
+// neighbours), the rest are empty; on 1 and 3 threads (the rows are split over the threads).
+TEST(NeighbourSearch, RowsForTheFirstParticlesOnly) {
+  const auto x = random_points<2>(600, 7);
+  const std::size_t n = 600, k = 250;
+  const Real r = 0.08;
+  NeighbourSearch<2> full, part;
+  full.build(x.data(), n, r);
+  const int threads_before = omp_get_max_threads();
+  for (int threads : {1, 3}) {
+    omp_set_num_threads(threads);
+    part.build(x.data(), n, r, nullptr, nullptr, k);
+    const NeighbourList &F = full.list(), &P = part.list();
+    ASSERT_EQ(P.particles(), n);
+    std::size_t pairs = 0, beyond_k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i >= k) {
+        EXPECT_EQ(P.count(i), 0u) << "particle " << i;
+        continue;
+      }
+      const std::vector<std::uint32_t> got(P.indices.begin() + P.begin(i), P.indices.begin() + P.end(i)),
+          want(F.indices.begin() + F.begin(i), F.indices.begin() + F.end(i));
+      ASSERT_EQ(got, want) << "particle " << i << ", " << threads << " threads";
+      pairs += got.size();
+      for (std::uint32_t j : got) beyond_k += j >= k;
+    }
+    EXPECT_EQ(P.pairs(), pairs);
+    EXPECT_GT(beyond_k, 0u);  // rows reach particles that have none of their own
+  }
+  omp_set_num_threads(threads_before);
+}
+
 TEST(NeighbourSearch, MixedPeriodicity) {
   const auto x = random_points<2>(500, 7);
   PeriodicBox<2> b;

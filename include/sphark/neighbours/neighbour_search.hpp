@@ -74,8 +74,10 @@ class NeighbourSearch {
   // that stores particles in its own order keeps a fixed summation order this way).
   // radii (optional, n entries, each <= radius): lists every pair with
   // |x_i - x_j| < max(radii[i], radii[j]) instead (symmetric; radius sizes the cells).
+  // rows (optional, <= n): only particles 0 .. rows - 1 get their rows; the others are found as
+  // neighbours but their own rows stay empty (a distributed scheme's halo: docs/scaling.md).
   void build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key = nullptr,
-             const Real* radii = nullptr);
+             const Real* radii = nullptr, std::size_t rows = static_cast<std::size_t>(-1));
 
   // Renumbers the built particles: new index i is old index order[i] (a permutation of 0..n-1).
   // The lists, the stored positions and the cells follow; every row keeps its order.
@@ -123,7 +125,7 @@ class NeighbourSearch {
   std::size_t append_row(std::size_t i, const MinimumImage<D>& image, Real r2max, const Real* r2i, const std::uint32_t* key,
                          const neighbours_detail::CellPoints<D>& cells, neighbours_detail::ScanCell<D> scan,
                          std::vector<std::uint32_t>& out, std::size_t len) const;
-  void join_rows(const std::vector<std::uint32_t>* rows, int team);
+  void join_rows(const std::vector<std::uint32_t>* rows, int team, std::size_t with_rows);  // rows 0 .. with_rows - 1 built
 
   std::optional<PeriodicBox<D>> box_;
   Real radius_ = 0;

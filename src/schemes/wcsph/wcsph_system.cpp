@@ -62,7 +62,7 @@ void WcsphSystem<D, Kernel>::update_neighbours(const Real* x, std::size_t count,
   // Lists of the particles (rows ascending in particle number, or key), then slots in cell
   // order: slot s is particle slot_particle_[s], and the rows keep their order (sums do not
   // depend on slots). The local particles (0 .. n) take the first slots: rows are theirs only.
-  search_.build(x, count, support + skin, keys);
+  search_.build(x, count, support + skin, keys, nullptr, n);  // the halo's rows are never read: not built
   slot_particle_ = search_.cell_order();
   if (count > n) std::stable_partition(slot_particle_.begin(), slot_particle_.end(), [n](std::uint32_t p) { return p < n; });
   search_.renumber(slot_particle_);
