@@ -85,22 +85,38 @@ void Decomposition<D>::owners(const Real* x, std::size_t n, int* out) const {
   for (std::size_t i = 0; i < n; ++i) out[i] = owner(Eigen::Map<const Vec<D>>(x + D * i));
 }
 
+// Down the tree of cuts: a child is visited only if the ball (p, r) reaches its half-space (the
+// distance to x[axis] < cut is max(0, p[axis] - cut), to x[axis] >= cut max(0, cut - p[axis]));
+// a leaf's domain is then tested exactly. O(log P + leaves near p) instead of O(P).
+template <int D>
+void Decomposition<D>::ranks_near(int node, const Vec<D>& p, Real r, std::vector<int>& out) const {
+  const Node& n = nodes_[node];
+  if (n.axis < 0) {
+    const DomainBox<D>& b = domains_[n.rank];
+    if (distance2(p, b.lo, b.hi) < r * r) out.push_back(n.rank);
+    return;
+  }
+  if (p[n.axis] - n.cut < r) ranks_near(n.left, p, r, out);
+  if (n.cut - p[n.axis] < r) ranks_near(n.right, p, r, out);
+}
+
+// Along a periodic axis the images p + s L (s = -1, 0, 1) that come within r of the box.
 template <int D>
 void Decomposition<D>::ranks_within(const Vec<D>& x, Real r, std::vector<int>& out) const {
   const std::size_t first = out.size();
   const Vec<D> p0 = wrapped(x);
-  const Real r2 = r * r;
   int images = 1;
   for (int k = 0; k < D; ++k) images *= (box_ && box_->periodic[k]) ? 3 : 1;
   for (int image = 0; image < images; ++image) {
     Vec<D> p = p0;
+    bool reaches = true;
     for (int k = 0, code = image; k < D; ++k) {
       if (!(box_ && box_->periodic[k])) continue;
       p[k] += (code % 3 - 1) * (box_->hi[k] - box_->lo[k]);  // shifts -L, 0, +L
       code /= 3;
+      reaches = reaches && p[k] > box_->lo[k] - r && p[k] < box_->hi[k] + r;
     }
-    for (std::size_t rank = 0; rank < domains_.size(); ++rank)
-      if (distance2(p, domains_[rank].lo, domains_[rank].hi) < r2) out.push_back(static_cast<int>(rank));
+    if (reaches) ranks_near(0, p, r, out);
   }
   std::sort(out.begin() + first, out.end());
   out.erase(std::unique(out.begin() + first, out.end()), out.end());

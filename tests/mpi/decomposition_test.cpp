@@ -9,6 +9,7 @@
 #include "mpi_env.hpp"
 #include "particles.hpp"
 #include "sphark/parallel/decomposition.hpp"
+#include "virtual_rcb.hpp"
 
 namespace sphark {
 namespace {
@@ -112,6 +113,32 @@ TEST(Decomposition, RanksWithinFindTheOwnersOfNearbyPoints) {
     }
     EXPECT_EQ(missed, 0u) << "periodic " << periodic;
   }
+}
+
+// The tree descent returns exactly the ranks the test of every domain and image returns: 1 to
+// 1,000 virtual ranks, open and periodic boxes, radii from a hundredth to a half of the box.
+TEST(Decomposition, RanksWithinByTheTreeEqualsEveryDomainTested) {
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<Real> u(-0.2, 1.2), radius(0.01, 0.5);
+  std::size_t mismatches = 0, found = 0;
+  for (bool periodic : {false, true})
+    for (int P : {1, 2, 3, 7, 64, 1000}) {
+      Decomposition<3> dec(testing::unit_box<3>(periodic));
+      std::vector<Decomposition<3>::Node> nodes;
+      testing::virtual_tree<3>(0, P, Vec<3>::Zero(), Vec<3>::Ones(), nodes);
+      dec.set_tree(nodes);
+      std::vector<int> near;
+      for (int s = 0; s < 2000; ++s) {
+        const Vec<3> p(u(gen), u(gen), u(gen));
+        const Real r = radius(gen);
+        near.clear();
+        dec.ranks_within(p, r, near);
+        mismatches += near != testing::every_domain_within(dec, p, r);
+        found += near.size();
+      }
+    }
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_GT(found, 24000u);  // not vacuous: most queries find several ranks
 }
 
 TEST(Decomposition, SerialCommunicatorGivesOneDomain) {

@@ -54,7 +54,8 @@ class Decomposition {
   // Owner of each of n positions (D each) into owners[0 .. n).
   void owners(const Real* x, std::size_t n, int* owners) const;
   // Appends to `out` (ascending, unique) every rank whose domain comes closer than r to x or to
-  // one of its periodic images (distance point-box; x itself need not be wrapped).
+  // one of its periodic images (distance point-box; x itself need not be wrapped). A descent of
+  // the tree: O(log P) per query plus the ranks found.
   void ranks_within(const Vec<D>& x, Real r, std::vector<int>& out) const;
 
   // Tree of cuts, built by partition_rcb. Leaves hold a rank.
@@ -69,6 +70,7 @@ class Decomposition {
 
  private:
   Vec<D> wrapped(const Vec<D>& x) const { return box_ ? box_->wrap(x) : x; }
+  void ranks_near(int node, const Vec<D>& p, Real r, std::vector<int>& out) const;  // the subtree's leaves within r
   std::optional<PeriodicBox<D>> box_;
   std::vector<Node> nodes_;
   std::vector<DomainBox<D>> domains_;

@@ -11,9 +11,11 @@
 //   Wrms/N            ARKODE's WRMS norm of an N-entry parallel vector: SUNDIALS' and ours
 // Run: mpirun --oversubscribe --allow-run-as-root -np P build/bin/bench_mpi_distributed
 #include <cmath>
+#include <random>
 
 #include <nvector/nvector_serial.h>
 
+#include "../virtual_rcb.hpp"
 #include "bench_support.hpp"
 #include "sphark/parallel/decomposition.hpp"
 #include "sphark/parallel/halo.hpp"
@@ -132,12 +134,41 @@ void Wrms(benchmark::State& state) {
   SUNContext_Free(&ctx);
 }
 
+// ranks_within at P virtual ranks (a balanced tree over the periodic unit cube; no MPI): the tree
+// descent (arg 1 = 0) against testing every domain and image (arg 1 = 1), per query; radius of a
+// halo at 10^5 particles per rank, 2 x 1.2 x 1.3 x (P 10^5)^(-1/3).
+void RanksWithin(benchmark::State& state) {
+  const int P = static_cast<int>(state.range(0));
+  Decomposition<3> dec(unit_box());
+  std::vector<Decomposition<3>::Node> nodes;
+  testing::virtual_tree<3>(0, P, Vec<3>::Zero(), Vec<3>::Ones(), nodes);
+  dec.set_tree(nodes);
+  const Real r = 2 * 1.2 * 1.3 * std::cbrt(1.0 / (double(P) * 1e5));
+  std::mt19937_64 gen(5);
+  std::uniform_real_distribution<Real> u(0, 1);
+  std::vector<int> near;
+  std::size_t found = 0, queries = 0;
+  for (auto _ : state) {
+    const Vec<3> p(u(gen), u(gen), u(gen));
+    if (state.range(1) == 0) {
+      near.clear();
+      dec.ranks_within(p, r, near);
+      found += near.size();
+    } else {
+      found += testing::every_domain_within(dec, p, r).size();
+    }
+    ++queries;
+  }
+  state.counters["ranks_found"] = double(found) / double(std::max<std::size_t>(queries, 1));
+}
+
 BENCHMARK(Rcb)->Arg(100000)->Arg(1000000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(Owners)->Arg(100000)->Arg(1000000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(Migrate)->Arg(100000)->Arg(1000000)->Iterations(3)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(HaloBuild)->Arg(100000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(HaloExchange)->Arg(10000)->Arg(100000)->Arg(1000000)->Iterations(50)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(Allreduce)->Arg(1)->Arg(8)->Iterations(2000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(RanksWithin)->ArgsProduct({{8, 64, 1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(Wrms)->Args({100000, 0})->Args({100000, 1})->Iterations(200)->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
