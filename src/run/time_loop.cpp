@@ -130,14 +130,20 @@ void TimeLoop::stop(int signal) {
   save(t_);
 }
 
-// y, t: the last good state, written as a row, a frame and a checkpoint.
+// y, t: the last good state, written as a row, a frame and a checkpoint. The stepper's reason
+// is the failure's; if the row or the frame of that state cannot be made (a system whose own
+// state was left by the failed attempt, e.g. a density solve started from its iterates), that is
+// added to it, and the checkpoint is written all the same.
 void TimeLoop::fail() {
   res_.status = TimeLoopStatus::Failed;
   res_.failure = stepper_->failure_reason();
-  {
+  try {
     ScopedPhase phase(Phase::Output);
     csv_.row(hooks_.diagnostics(t_, y_.data(), stats()));
     if (frames()) write_frame(t_);
+  } catch (const std::exception& e) {
+    if (distributed()) throw;  // (run_scene ends every rank)
+    res_.failure += std::string("; the last good state's row or frame: ") + e.what();
   }
   save(t_);
 }

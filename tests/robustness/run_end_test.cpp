@@ -54,7 +54,9 @@ struct Ending {
 // Runs the drift to t_end with samples every 0.1 and frames every frame_every; end_after: a
 // `finished` hook that ends the run at the first sample at or after that time (0: none);
 // throw_after: the frame hook throws from that time on (0: never).
-Ending run_to_end(const TempDir& dir, Real t_end, Real frame_every, Real end_after = 0, Real throw_after = 0) {
+// inject_nan_at: the RHS turns non-finite from then on (the stepper fails).
+Ending run_to_end(const TempDir& dir, Real t_end, Real frame_every, Real end_after = 0, Real throw_after = 0,
+                  Real inject_nan_at = 0) {
   Drift sys;
   std::vector<Real> y0 = {0, 1}, x(1);
   StepperOptions o;
@@ -71,6 +73,7 @@ Ending run_to_end(const TempDir& dir, Real t_end, Real frame_every, Real end_aft
   s.columns = {"t"};
   s.checkpoint = dir.path() / "c.bin";
   s.quiet = true;
+  s.inject_nan_at = inject_nan_at;
   TimeLoopHooks h;
   h.diagnostics = [](Real t, const Real*, const StepperStats&) { return std::vector<Real>{t}; };
   h.frame = [&](Real t, const Real* y) {
@@ -124,4 +127,20 @@ TEST(HookFailure, KeepsTheRowsAndCheckpointsTheStateReached) {
   const Checkpoint c = load_checkpoint(e.result.checkpoint);
   EXPECT_NEAR(c.t, 1.0, 1e-12);
   EXPECT_NEAR(c.y[0], 1.0, 1e-12);  // x(t) = t
+}
+
+// A stepper failure whose last good state cannot be drawn: the stepper's reason stays the
+// failure's (the frame's error is added), and the state is checkpointed all the same.
+TEST(StepperFailure, KeepsItsReasonWhenTheLastGoodFrameFails) {
+  TempDir dir;
+  const Ending e = run_to_end(dir, 2.0, 2.0, 0, 0.3, 0.55);  // frames at 0 (and the end); NaN from 0.55
+  EXPECT_EQ(e.result.status, TimeLoopStatus::Failed);
+  const std::string& why = e.result.failure;
+  const std::size_t added = why.find("; the last good state's row or frame: frame: density solve failed");
+  ASSERT_NE(added, std::string::npos) << why;
+  EXPECT_GT(added, 0u) << why;  // the stepper's reason comes first
+  EXPECT_NE(why.substr(0, added).find("non-finite"), std::string::npos) << why;
+  EXPECT_LT(e.result.t_reached, 0.56);
+  ASSERT_EQ(e.result.checkpoint, dir.path() / "c.bin");
+  EXPECT_NEAR(load_checkpoint(e.result.checkpoint).t, e.result.t_reached, 1e-12);
 }
