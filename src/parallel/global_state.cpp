@@ -1,6 +1,5 @@
 #include "sphark/parallel/global_state.hpp"
 
-#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -14,31 +13,16 @@ std::vector<int> field_components(const StateLayout& layout) {
   return c;
 }
 
-namespace {
-std::size_t per_particle(const std::vector<int>& components) {
-  return static_cast<std::size_t>(std::accumulate(components.begin(), components.end(), 0));
-}
-}  // namespace
-
-std::vector<Real> select_particles(const std::vector<Real>& all, const std::vector<int>& components, std::size_t count,
-                                   const std::vector<std::int64_t>& ids) {
-  if (all.size() != count * per_particle(components))
-    throw std::invalid_argument("select_particles: " + std::to_string(all.size()) + " values do not fit " +
-                                std::to_string(count) + " particles");
-  std::vector<Real> out;
-  out.reserve(ids.size() * per_particle(components));
-  std::size_t offset = 0;
-  for (const int comps : components) {
-    const std::size_t c = static_cast<std::size_t>(comps);
-    for (const std::int64_t id : ids) {
-      if (id < 0 || static_cast<std::size_t>(id) >= count)
-        throw std::invalid_argument("select_particles: id " + std::to_string(id) + " outside [0, " +
-                                    std::to_string(count) + ")");
-      for (std::size_t k = 0; k < c; ++k) out.push_back(all[offset + c * static_cast<std::size_t>(id) + k]);
-    }
-    offset += c * count;
+std::vector<Real> share_of(const StateLayout& whole, const std::vector<Real>& all, const std::vector<std::int64_t>& ids) {
+  if (all.size() != whole.size())
+    throw std::invalid_argument("share_of: " + std::to_string(all.size()) + " values do not fit a state of " +
+                                std::to_string(whole.size()));
+  std::vector<std::size_t> keep(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (ids[i] < 0) throw std::invalid_argument("share_of: negative id " + std::to_string(ids[i]));
+    keep[i] = static_cast<std::size_t>(ids[i]);
   }
-  return out;
+  return resize_species(whole, all.data(), whole.with_count(whole.primary(), keep.size()), whole.primary(), keep);
 }
 
 std::vector<Real> gather_particles(const Communicator& comm, const std::vector<std::int64_t>& ids,

@@ -2,6 +2,8 @@
 // writing one, restoring a run from one, and when one is due.
 #include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/io/vtk_series.hpp"
@@ -45,7 +47,7 @@ void TimeLoop::bind_checkpoint_scalars() {
 
 void TimeLoop::restore(const Checkpoint& c) {
   if (distributed()) {
-    take_share(c);
+    restore_share(c);
   } else {
     if (hooks_.restart_layout) layout_ = hooks_.restart_layout(c);
     if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
@@ -74,24 +76,32 @@ void TimeLoop::restore(const Checkpoint& c) {
   opts_.initial_dt = c.last_dt;
 }
 
+namespace {
+// Stepper resume data of one value per state entry followed by one more (the leapfrog's: its
+// derivative, then a time) apart: the per-entry part, and the tail. Throws unless it is so.
+std::pair<std::vector<Real>, Real> per_entry_and_tail(const std::vector<Real>& data, std::size_t entries,
+                                                      const char* where) {
+  if (data.size() != entries + 1)
+    throw std::runtime_error(std::string(where) + ": the stepper's resume data is not one value per state entry + 1");
+  return {std::vector<Real>(data.begin(), data.end() - 1), data.back()};
+}
+}  // namespace
+
 // A distributed restart (checkpoint of any number of ranks, or of a serial run): the state and
 // the stepper's per-entry data of this rank's particles (hooks_.global_ids: the share the system
-// took before the loop).
-void TimeLoop::take_share(const Checkpoint& c) {
+// took before the loop, SceneRun::take_share).
+void TimeLoop::restore_share(const Checkpoint& c) {
   if (!hooks_.global_ids) throw std::logic_error("a distributed restart without a global_ids hook");
-  const std::size_t global = c.particles();
-  if (auto why = layout_mismatch(c, layout_.with_count(layout_.primary(), global)))
-    throw std::runtime_error("--restart: " + *why);
+  const StateLayout whole = layout_.with_count(layout_.primary(), c.particles());
+  if (auto why = layout_mismatch(c, whole)) throw std::runtime_error("--restart: " + *why);
   const std::vector<std::int64_t> ids = hooks_.global_ids();
   if (ids.size() != layout_.particles()) throw std::logic_error("a distributed restart: the ids do not fit the layout");
-  const std::vector<int> components = field_components(layout_);
-  y_ = select_particles(c.y, components, global, ids);
+  y_ = share_of(whole, c.y, ids);
   opts_.resume_data.clear();
   if (c.stepper_data.empty()) return;
-  if (c.stepper_data.size() != c.y.size() + 1)
-    throw std::runtime_error("--restart: the stepper data of the checkpoint is not one value per state entry + 1");
-  opts_.resume_data = select_particles({c.stepper_data.begin(), c.stepper_data.end() - 1}, components, global, ids);
-  opts_.resume_data.push_back(c.stepper_data.back());
+  const auto [per_entry, tail] = per_entry_and_tail(c.stepper_data, c.y.size(), "--restart");
+  opts_.resume_data = share_of(whole, per_entry, ids);
+  opts_.resume_data.push_back(tail);
 }
 
 // A distributed run's checkpoint: the whole run as a serial run of the same particles writes it,
@@ -108,8 +118,8 @@ void TimeLoop::gather_whole_run(Checkpoint& c) {
   c.species = describe_layout(layout_.with_count(layout_.primary(), global));
   c.y = gather_particles(comm, ids, y_, components);
   if (c.stepper_data.empty()) return;
-  const Real tail = c.stepper_data.back();  // the leapfrog's: the derivative, then one time
-  c.stepper_data = gather_particles(comm, ids, {c.stepper_data.begin(), c.stepper_data.end() - 1}, components);
+  const auto [per_entry, tail] = per_entry_and_tail(c.stepper_data, y_.size(), "checkpoint");
+  c.stepper_data = gather_particles(comm, ids, per_entry, components);
   if (comm.rank() == 0) c.stepper_data.push_back(tail);
 }
 

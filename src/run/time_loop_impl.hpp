@@ -45,7 +45,7 @@ class TimeLoop {
  private:
   void bind_checkpoint_scalars();
   void restore(const Checkpoint& c);
-  void take_share(const Checkpoint& c);
+  void restore_share(const Checkpoint& c);
   void gather_whole_run(Checkpoint& c);
   void bound_steps(OdeSystem& system);
   StepperStats stats() const { return base_.total(stepper_->stats()); }

@@ -1,6 +1,6 @@
 // The whole state of a distributed run (parallel/global_state.hpp), as checkpoints hold it: each
 // rank's particles, dealt out in a scrambled order, gathered on rank 0 into the field-major
-// state by global id, bit for bit; select_particles takes any rank's share back out of it, bit
+// state by global id, bit for bit; share_of takes any rank's share back out of it, bit
 // for bit; ids that are not 0 .. N-1 each once are refused.
 #include <gtest/gtest.h>
 
@@ -16,7 +16,13 @@ namespace {
 using testing::world;
 
 constexpr std::size_t kParticles = 37;
-const std::vector<int> kComponents = {2, 2, 1};  // e.g. x, v, rho
+const std::vector<int> kComponents = {2, 2, 1};  // x, v, rho
+
+StateLayout whole_layout() {
+  StateLayout L(kParticles);
+  L.add(Field::Position, 2).add(Field::Velocity, 2).add(Field::Density, 1);
+  return L;
+}
 
 Real value(std::size_t id, int field, int k) { return std::sin(0.3 + 1.7 * double(id) + 0.61 * field + 0.2 * k); }
 
@@ -40,7 +46,7 @@ std::vector<std::int64_t> my_ids() {
 TEST(GlobalState, GatheredOnRankZeroByIdAndSelectedBack) {
   const std::vector<Real> all = whole_state();
   const std::vector<std::int64_t> ids = my_ids();
-  const std::vector<Real> mine = select_particles(all, kComponents, kParticles, ids);
+  const std::vector<Real> mine = share_of(whole_layout(), all, ids);
   ASSERT_EQ(mine.size(), ids.size() * 5);
   for (std::size_t i = 0; i < ids.size(); ++i)  // field 1 (v), component 1 of particle i
     EXPECT_EQ(mine[2 * ids.size() + 2 * i + 1], value(static_cast<std::size_t>(ids[i]), 1, 1));
@@ -60,8 +66,10 @@ TEST(GlobalState, RefusesIdsThatAreNotEachParticleOnce) {
     threw = true;
   }
   EXPECT_EQ(threw, world().rank() == 0);
-  EXPECT_THROW(select_particles(whole_state(), kComponents, kParticles, {kParticles}), std::invalid_argument);
-  EXPECT_THROW(select_particles(whole_state(), kComponents, kParticles + 1, {0}), std::invalid_argument);
+  EXPECT_THROW(share_of(whole_layout(), whole_state(), {std::int64_t(kParticles)}), std::invalid_argument);
+  EXPECT_THROW(share_of(whole_layout(), whole_state(), {-1}), std::invalid_argument);
+  EXPECT_THROW(share_of(whole_layout().with_count(Species::Gas, kParticles + 1), whole_state(), {0}),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -15,11 +15,10 @@ namespace sphark {
 // The components per particle of each field of a one-species layout, in state order.
 std::vector<int> field_components(const StateLayout& layout);
 
-// The field-major values of the particles `ids` (in that order) out of the field-major values
-// `all` of every particle (particle k = id k; count particles). std::invalid_argument for an id
-// outside [0, count) or sizes that do not fit.
-std::vector<Real> select_particles(const std::vector<Real>& all, const std::vector<int>& components, std::size_t count,
-                                   const std::vector<std::int64_t>& ids);
+// The state of the particles `ids` (in that order) out of `all`, the state of every particle
+// laid out by `whole` (particle k = id k): resize_species on the first species.
+// std::invalid_argument for an id outside the layout or a state that does not fit it.
+std::vector<Real> share_of(const StateLayout& whole, const std::vector<Real>& all, const std::vector<std::int64_t>& ids);
 
 // Collective: each rank's field-major values of its particles `ids` (local.size() = ids.size()
 // x the components) become, on rank 0, the field-major values of every particle in global id

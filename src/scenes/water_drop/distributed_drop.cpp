@@ -12,7 +12,7 @@ DistributedDrop::DistributedDrop(const WaterDropConfig& config, Communicator com
     : drop_(make_water_drop(config)), comm_(std::move(comm)), global_(drop_.particles()) {
   const StateLayout all = drop_.model->layout();
   own_domain_of(drop_.y0.data() + all.offset(Field::Position));
-  y_ = select_particles(drop_.y0, field_components(all), global_, ids_);
+  y_ = share_of(all, drop_.y0, ids_);
   drop_.model->distribute(comm_, ids_);
 }
 
@@ -29,11 +29,11 @@ void DistributedDrop::own_domain_of(const Real* x) {
 
 const std::vector<std::int64_t>& DistributedDrop::take_share(const std::vector<Real>& y_all) {
   const StateLayout all = drop_.model->layout().with_count(Species::Gas, global_);
-  if (y_all.size() != all.size())
+  if (y_all.size() != all.size())  // (before the positions are read)
     throw std::invalid_argument("DistributedDrop::take_share: a state of " + std::to_string(y_all.size()) +
                                 " values for " + std::to_string(global_) + " particles");
   own_domain_of(y_all.data() + all.offset(Field::Position));
-  y_ = select_particles(y_all, field_components(all), global_, ids_);
+  y_ = share_of(all, y_all, ids_);
   drop_.model->set_particles(ids_);
   return ids_;
 }
