@@ -65,6 +65,18 @@ SpmhdDiagnostics spmhd_diagnostics(SpmhdScheme<D, K>& s, Real t, const Real* y) 
     if (psi && s.options().local_ch) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho);  // state psi / c_h,a
     else if (psi && ch > 0) d.psi_energy += m[a] * psi[a] * psi[a] / (2 * rho * ch * ch);
   }
+  if (s.distributed()) {  // every rank's sums and maxima (collective)
+    Real sums[6] = {d.mean_h_divb_over_b, static_cast<Real>(counted), d.magnetic_energy, d.kinetic_energy,
+                    d.thermal_energy, d.psi_energy};
+    Real maxima[2] = {d.max_h_divb, d.max_h_divb_over_b};
+    s.communicator().allreduce(sums, 6, ReduceOp::Sum);
+    s.communicator().allreduce(d.momentum.data(), 3, ReduceOp::Sum);
+    s.communicator().allreduce(maxima, 2, ReduceOp::Max);
+    d.mean_h_divb_over_b = sums[0], d.magnetic_energy = sums[2], d.kinetic_energy = sums[3];
+    d.thermal_energy = sums[4], d.psi_energy = sums[5];
+    d.max_h_divb = maxima[0], d.max_h_divb_over_b = maxima[1];
+    counted = static_cast<std::size_t>(sums[1]);
+  }
   if (counted > 0) d.mean_h_divb_over_b /= static_cast<Real>(counted);
   add_sinks(L, y, d);
   d.potential_energy = s.potential_energy();

@@ -3,9 +3,16 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 namespace sphark {
+
+void check_key_ids(const std::vector<std::int64_t>& ids, const char* who) {
+  for (const std::int64_t id : ids)
+    if (id < 0 || id > std::int64_t(std::numeric_limits<std::uint32_t>::max()))
+      throw std::invalid_argument(std::string(who) + ": global id " + std::to_string(id) + " outside [0, 2^32)");
+}
 namespace {
 
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
@@ -188,7 +195,7 @@ void HaloPlan<D>::exchange(Real* field, int components) {
 }
 
 template <int D>
-void HaloPlan<D>::exchange(std::initializer_list<Field> fields) {
+void HaloPlan<D>::exchange(std::span<const Field> fields) {
   std::size_t width = 0;
   for (const Field& f : fields) width += static_cast<std::size_t>(f.components);
   if (send_buffer_.size() < width * send_index_.size()) send_buffer_.resize(width * send_index_.size());

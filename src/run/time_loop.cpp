@@ -81,7 +81,8 @@ TimeLoop::TimeLoop(OdeSystem& system, const StateLayout& initial_layout, Stepper
   if (y_.size() != layout_.size()) throw std::invalid_argument("run_time_loop: initial state does not fit the layout");
   if (s.restart) restore(*s.restart);
   bound_steps(system);
-  if (s.restart) system.resume(s.restart->system_data);  // after bound_steps: its evaluation moves the starts
+  // after bound_steps: its evaluation moves the starts (distributed: this rank's share, restore_share)
+  if (s.restart) system.resume(distributed() ? system_resume_ : s.restart->system_data);
   stepper_ = make_stepper(system, opts_, t_, y_.data());
 }
 
@@ -235,6 +236,8 @@ void TimeLoop::finish() {
   }
   res_.t_reached = t_;
   res_.stats = stats();
+  if (distributed())  // every rank's particles: the work of the whole run (the other counts are the same on every rank)
+    res_.stats.particle_evals = opts_.communicator.allreduce(std::int64_t(res_.stats.particle_evals), ReduceOp::Sum);
   res_.diagnostics = csv_.text();
 }
 

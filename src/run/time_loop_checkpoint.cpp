@@ -61,6 +61,7 @@ void TimeLoop::restore(const Checkpoint& c) {
     const bool optional = name == "particle_evals";
     *ptr = !optional || c.has_scalar(name) ? c.scalar(name) : 0;
   }
+  if (distributed() && opts_.communicator.rank() != 0) base_.particle_evals = 0;  // (the checkpoint's is the sum)
   // Another sampling, frame or checkpoint interval than the checkpointed run's: continue on the
   // new grid from the checkpoint time on.
   if (c.scalar("sample_every") != s_.sample_every || !(sample_ * s_.sample_every > t_))  // (the latter: a corrupt index)
@@ -97,6 +98,7 @@ void TimeLoop::restore_share(const Checkpoint& c) {
   const std::vector<std::int64_t> ids = hooks_.global_ids();
   if (ids.size() != layout_.particles()) throw std::logic_error("a distributed restart: the ids do not fit the layout");
   y_ = share_of(whole, c.y, ids);
+  system_resume_ = system_share(c, ids);
   opts_.resume_data.clear();
   if (c.stepper_data.empty()) return;
   const auto [per_entry, tail] = per_entry_and_tail(c.stepper_data, c.y.size(), "--restart");
@@ -104,12 +106,44 @@ void TimeLoop::restore_share(const Checkpoint& c) {
   opts_.resume_data.push_back(tail);
 }
 
+// The system's resume data (OdeSystem::resume_shape: per-particle blocks, then a tail) of the
+// particles `ids` out of the checkpoint's, every particle's by global id.
+std::vector<Real> TimeLoop::system_share(const Checkpoint& c, const std::vector<std::int64_t>& ids) const {
+  if (c.system_data.empty()) return {};
+  if (!c.has_scalar("system_per_particle"))
+    throw std::runtime_error("--restart: the checkpoint's system data has no shape (written before 2026-12-05): "
+                             "restart it serially");
+  const auto per = static_cast<std::size_t>(c.scalar("system_per_particle"));
+  const auto tail = static_cast<std::size_t>(c.scalar("system_tail"));
+  const std::size_t n = c.particles(), m = ids.size();
+  if (c.system_data.size() != per * n + tail) throw std::runtime_error("--restart: the system data does not fit its shape");
+  std::vector<Real> out(per * m + tail);
+  for (std::size_t k = 0; k < per; ++k)
+    for (std::size_t i = 0; i < m; ++i) out[k * m + i] = c.system_data[k * n + static_cast<std::size_t>(ids[i])];
+  std::copy(c.system_data.end() - static_cast<std::ptrdiff_t>(tail), c.system_data.end(), out.end() - static_cast<std::ptrdiff_t>(tail));
+  return out;
+}
+
+// The system's resume data of a distributed run on rank 0: its per-particle blocks by global id
+// (OdeSystem::resume_shape), then rank 0's tail (every rank's is the same).
+void TimeLoop::gather_system_data(Checkpoint& c, const std::vector<std::int64_t>& ids) {
+  const Communicator& comm = opts_.communicator;
+  const OdeSystem::ResumeShape shape = system_.resume_shape();
+  const auto per = static_cast<std::size_t>(shape.per_particle), tail = static_cast<std::size_t>(shape.tail);
+  comm.check(c.system_data.size() == per * ids.size() + tail,
+             "checkpoints of distributed runs: the system's resume data is not in per-particle blocks");
+  if (per == 0 && tail == 0) return;
+  const std::vector<Real> tail_values(c.system_data.end() - static_cast<std::ptrdiff_t>(tail), c.system_data.end());
+  c.system_data.resize(per * ids.size());
+  if (per > 0) c.system_data = gather_particles(comm, ids, c.system_data, std::vector<int>(per, 1));
+  if (comm.rank() == 0) c.system_data.insert(c.system_data.end(), tail_values.begin(), tail_values.end());
+}
+
 // A distributed run's checkpoint: the whole run as a serial run of the same particles writes it,
 // assembled on rank 0 (c already holds this rank's values; the other ranks' c is then empty).
 void TimeLoop::gather_whole_run(Checkpoint& c) {
   const Communicator& comm = opts_.communicator;
-  comm.check(layout_.species().size() == 1 && c.system_data.empty(),
-             "checkpoints of distributed runs hold one species and no system resume data");
+  comm.check(layout_.species().size() == 1, "checkpoints of distributed runs hold one species");
   comm.check(c.stepper_data.empty() || c.stepper_data.size() == y_.size() + 1,
              "checkpoints of distributed runs: this stepper's resume data is not per state entry");
   const std::vector<std::int64_t> ids = hooks_.global_ids();
@@ -117,6 +151,7 @@ void TimeLoop::gather_whole_run(Checkpoint& c) {
   const auto global = static_cast<std::size_t>(comm.allreduce(static_cast<std::int64_t>(ids.size()), ReduceOp::Sum));
   c.species = describe_layout(layout_.with_count(layout_.primary(), global));
   c.y = gather_particles(comm, ids, y_, components);
+  gather_system_data(c, ids);
   if (c.stepper_data.empty()) return;
   const auto [per_entry, tail] = per_entry_and_tail(c.stepper_data, y_.size(), "checkpoint");
   c.stepper_data = gather_particles(comm, ids, per_entry, components);
@@ -137,6 +172,8 @@ void TimeLoop::save(Real time) {
   c.last_dt = stepper_->stats().last_dt > 0 ? stepper_->stats().last_dt : opts_.initial_dt;
   CountBase now;  // the counts so far: the restart's base
   now.set(stats());
+  if (distributed())  // the whole run's work (a restart counts it on rank 0, restore())
+    now.particle_evals = static_cast<Real>(opts_.communicator.allreduce(std::int64_t(stats().particle_evals), ReduceOp::Sum));
   for (auto& [name, ptr] : binds_) {
     bool counted = false;
     for (auto& [cname, cptr] : now.bind())
@@ -156,6 +193,9 @@ void TimeLoop::save(Real time) {
   c.y = y_;
   c.stepper_data = stepper_->resume_data();
   c.system_data = system_.resume_data();
+  const OdeSystem::ResumeShape shape = system_.resume_shape();  // a distributed restart takes its share by it
+  c.set_scalar("system_per_particle", shape.per_particle);
+  c.set_scalar("system_tail", shape.tail);
   if (distributed()) gather_whole_run(c);
   flush_csv();
   res_.checkpoint = s_.checkpoint;

@@ -46,7 +46,9 @@ class TimeLoop {
   void bind_checkpoint_scalars();
   void restore(const Checkpoint& c);
   void restore_share(const Checkpoint& c);
+  std::vector<Real> system_share(const Checkpoint& c, const std::vector<std::int64_t>& ids) const;
   void gather_whole_run(Checkpoint& c);
+  void gather_system_data(Checkpoint& c, const std::vector<std::int64_t>& ids);
   void bound_steps(OdeSystem& system);
   StepperStats stats() const { return base_.total(stepper_->stats()); }
   void save(Real time);
@@ -83,6 +85,7 @@ class TimeLoop {
   CountBase base_;
   std::vector<std::pair<std::string, Real*>> binds_;  // the checkpoint's scalars
   std::vector<Real> y_;
+  std::vector<Real> system_resume_;  // a distributed restart: this rank's share of the system's resume data
   StateLayout layout_;  // changes when after_step resizes the state
   Real t_ = 0;
   std::unique_ptr<Stepper> stepper_;

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "mpi_env.hpp"
+#include "serial_comparison.hpp"
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/scenes/water_drop/distributed_drop.hpp"
 
@@ -27,6 +28,8 @@ namespace sphark {
 namespace {
 
 using testing::world;
+using Fields = testing::FieldsById;
+using Outcome = testing::RunOutcome;
 
 constexpr Real kDt = 2e-5;  // ~0.6 of the CFL limit 0.25 h / (c_s + |v|)
 constexpr const char* kErk = "ARKODE_BOGACKI_SHAMPINE_4_2_3";
@@ -37,9 +40,6 @@ WaterDropConfig small_drop() {
   c.spacing = 0.06;  // 872 particles
   return c;
 }
-
-// Per particle by global id: x, y, vx, vy, rho, [psi,] pressure, div v.
-using Fields = std::map<std::int64_t, std::vector<Real>>;
 
 // The frame's fields (collective when distributed: div v and pressure evaluate the RHS).
 Fields collect(WcsphModel& model, Real t, const std::vector<Real>& y, const std::vector<std::int64_t>& ids) {
@@ -54,22 +54,8 @@ Fields collect(WcsphModel& model, Real t, const std::vector<Real>& y, const std:
   return out;
 }
 
-struct Outcome {
-  Fields fields;
-  long steps = 0;
-  std::size_t migrated = 0;  // particles sent by this rank
-  std::size_t moved = 0;     // of those, at the migrations without a repartition (crossed by motion)
-};
-
 StepperOptions options(const std::string& method, bool adaptive, const Communicator& comm) {
-  StepperOptions o;
-  o.method = method;
-  if (!adaptive) o.fixed_dt = kDt;
-  o.rtol = 1e-6;
-  o.atol = {1e-6};
-  o.reproducible_norms = adaptive;
-  o.communicator = comm;
-  return o;
+  return testing::comparison_options(method, adaptive ? 0 : kDt, 1e-6, comm);
 }
 
 // From t = 0 in kChunks advances of kStepsPerChunk x kDt, between(chunk) after each but the last.
@@ -117,39 +103,7 @@ Outcome run_distributed(const WaterDropConfig& cfg, const std::string& method, b
 void check_drop(const std::string& name, const WaterDropConfig& cfg, const std::string& method = kErk,
                 bool adaptive = false) {
   const Outcome serial = run_serial(cfg, method, adaptive), dist = run_distributed(cfg, method, adaptive);
-  Real worst = 0;
-  std::int64_t missing = 0, unequal = 0;
-  for (const auto& [id, f] : dist.fields) {
-    const auto it = serial.fields.find(id);
-    if (it == serial.fields.end() || it->second.size() != f.size()) {
-      ++missing;
-      continue;
-    }
-    for (std::size_t k = 0; k < f.size(); ++k) {
-      unequal += f[k] != it->second[k];
-      worst = std::max(worst, std::abs(f[k] - it->second[k]) / std::max(1.0, std::abs(it->second[k])));
-    }
-  }
-  worst = testing::global_max(worst);
-  const std::int64_t migrated = testing::global_sum(static_cast<std::int64_t>(dist.migrated));
-  const std::int64_t moved = testing::global_sum(static_cast<std::int64_t>(dist.moved));
-  EXPECT_EQ(testing::global_sum(missing), 0) << name;
-  EXPECT_EQ(testing::global_sum(static_cast<std::int64_t>(dist.fields.size())),
-            static_cast<std::int64_t>(serial.fields.size()));
-  EXPECT_EQ(testing::global_sum(unequal), 0) << name << ": max relative difference " << worst;
-  EXPECT_EQ(dist.steps, serial.steps) << name;
-  if (!adaptive) {
-    EXPECT_EQ(serial.steps, kChunks * kStepsPerChunk);
-  }
-  if (world().size() > 1) {
-    EXPECT_GT(moved, 0);  // particles crossed the domains' boundaries
-    EXPECT_GT(migrated, moved);
-  }
-  if (world().rank() == 0)
-    std::printf("%s on %d ranks: %zu particles, %zu fields each, %ld steps, max relative difference to serial %.3g, "
-                "%lld particles migrated (%lld of them by motion, outside the repartition)\n",
-                name.c_str(), world().size(), serial.fields.size(), serial.fields.begin()->second.size(), dist.steps,
-                worst, static_cast<long long>(migrated), static_cast<long long>(moved));
+  testing::expect_equal_to_serial(name, serial, dist, adaptive ? 0 : kChunks * kStepsPerChunk);
 }
 
 TEST(WcsphDrop, DeltaSphCleanedMatchesSerialBitForBit) { check_drop("delta-SPH cleaned", small_drop()); }

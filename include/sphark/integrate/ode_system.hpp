@@ -72,6 +72,14 @@ class OdeSystem {
   // data that does not fit (wrong length, non-physical values).
   virtual std::vector<Real> resume_data() const { return {}; }
   virtual void resume(std::span<const Real> /*data*/) {}
+  // The shape of resume_data(): `per_particle` blocks of one value per particle (value k of
+  // particle a at k n + a), then `tail` values that do not belong to a particle. A distributed
+  // run's checkpoint gathers the blocks by global id (run/time_loop_checkpoint.cpp). Default:
+  // no per-particle blocks (such data cannot be checkpointed distributed).
+  struct ResumeShape {
+    int per_particle = 0, tail = 0;
+  };
+  virtual ResumeShape resume_shape() const { return {}; }
 
   // --- Particles: the unit of work (StepperStats::particle_evals) and of multirate stepping.
   // Particles are numbered 0 .. num_particles()-1, species after species in layout order.

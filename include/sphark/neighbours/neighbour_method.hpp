@@ -54,11 +54,13 @@ class AdaptiveNeighbourSearch {
   explicit AdaptiveNeighbourSearch(std::optional<PeriodicBox<D>> box = std::nullopt, Real crossover = grid_crossover(D))
       : grid_(box), tree_(box), crossover_(crossover) {}
 
+  // rows (<= n): the grid builds the rows of particles 0 .. rows - 1 only (a halo's stay empty);
+  // the tree builds every row (the extra ones unused).
   void build(const Real* x, std::size_t n, Real radius, const std::uint32_t* key = nullptr,
-             const Real* radii = nullptr) {
+             const Real* radii = nullptr, std::size_t rows = static_cast<std::size_t>(-1)) {
     method_ = radii ? choose_neighbour_method(radii, n, radius, D, crossover_) : NeighbourMethod::cell_grid;
     if (method_ == NeighbourMethod::cell_grid)
-      grid_.build(x, n, radius, key, radii);
+      grid_.build(x, n, radius, key, radii, rows);
     else
       tree_.build(x, n, radius, key, radii);
   }

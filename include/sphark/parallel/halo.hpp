@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "sphark/core/types.hpp"
@@ -41,6 +42,10 @@ struct HaloStats {
   std::size_t sent = 0, received = 0;  // particles per exchange (this rank)
   long builds = 0, exchanges = 0;
 };
+
+// The global ids of a scheme's particles, which its neighbour rows use as 32-bit sort keys:
+// std::invalid_argument "<who>: global id ... outside [0, 2^32)" unless each fits.
+void check_key_ids(const std::vector<std::int64_t>& ids, const char* who);
 
 template <int D>
 class HaloPlan {
@@ -65,7 +70,8 @@ class HaloPlan {
     int components;
   };
   // Collective: several arrays in one message per partner.
-  void exchange(std::initializer_list<Field> fields);
+  void exchange(std::initializer_list<Field> fields) { exchange(std::span<const Field>(fields.begin(), fields.size())); }
+  void exchange(std::span<const Field> fields);
 
   // Collective: true on every rank if the plan built with `skin` still holds every pair for
   // these positions and radii (2 max displacement + max radius growth <= skin on every rank).

@@ -9,8 +9,10 @@
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
+#include "sphark/parallel/global_state.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/state_resort.hpp"
+#include "sphark/schemes/spmhd/spmhd_migration.hpp"
 
 namespace sphark {
 
@@ -18,27 +20,71 @@ namespace {
 
 class OrszagTangRun final : public SceneRun {
  public:
-  OrszagTangRun(const std::string& variant, const OrszagTangParams& params)
-      : ot_(variant, params), resort_{params.resort, 4.0 / params.nx} {}
+  // A world with MPI: a distributed run (RCB domains, migration every kMigrateEvery steps,
+  // domains recomputed every kRepartitionEvery; docs/scaling.md, "SPMHD").
+  OrszagTangRun(const std::string& variant, const OrszagTangParams& params, Communicator world = {})
+      : ot_(variant, params), resort_{world.distributed() ? 0.0 : params.resort, 4.0 / params.nx}, world_(world) {
+    if (!world_.distributed()) return;
+    const StateLayout whole = ot_.scheme.layout();
+    parts_.emplace(world_, ot_.y0.data() + whole.offset(Field::Position), ot_.scheme.particles(), box_);
+    y_ = share_of(whole, ot_.y0, parts_->ids());
+    ot_.scheme.distribute(world_, parts_->ids());
+  }
   OdeSystem& system() override { return ot_.scheme; }
   const StateLayout& layout() const override { return ot_.scheme.layout(); }
-  std::vector<Real> initial_state() override { return ot_.y0; }
+  std::vector<Real> initial_state() override { return parts_ ? y_ : ot_.y0; }
+  StepperOptions stepper(const CoreOptions& core, std::string_view program) override {
+    StepperOptions o = SceneRun::stepper(core, program);
+    o.communicator = world_;
+    return o;
+  }
   std::vector<std::string> columns() const override {
     return {"t", "mean_h_divB_over_B", "max_h_divB_over_B", "kinetic_energy", "magnetic_energy", "thermal_energy",
             "psi_energy", "total_energy", "momentum_x", "momentum_y", "cleaning_speed", "rhs_evals"};
   }
   std::vector<Real> diagnostics(Real t, const Real* y, const StepperStats& st) override {
-    const SpmhdDiagnostics d = spmhd_diagnostics(ot_.scheme, t, y);
+    const SpmhdDiagnostics d = spmhd_diagnostics(ot_.scheme, t, y);  // (reduced over the ranks)
     return {t, d.mean_h_divb_over_b, d.max_h_divb_over_b, d.kinetic_energy, d.magnetic_energy, d.thermal_energy,
             d.psi_energy, d.total_energy, d.momentum[0], d.momentum[1], d.cleaning_speed,
             static_cast<Real>(st.rhs_evals)};
   }
-  ParticleFrame frame(Real t, const Real* y) override { return frame_.build(ot_.scheme, t, y, &box_); }
+  ParticleFrame frame(Real t, const Real* y) override {
+    ParticleFrame f = frame_.build(ot_.scheme, t, y, &box_);
+    if (parts_) f.ids = parts_->ids().data();  // parallel VTK: each particle's global id
+    return f;
+  }
   void settings(TimeLoopSettings& s) override { s.progress_interval = 10; }
-  // the flow scrambles the particles: the state re-sorted when it pays (run/state_resort.hpp)
-  bool changes_particles() const override { return resort_.threshold > 0; }
-  std::optional<TimeLoopHooks::Resize> after_step(Real, const Real* y, const TimeLoopHooks::CarriedData&) override {
-    return resort_if_scrambled<2>(ot_.scheme, ot_.scheme.layout(), y, resort_, std::optional(box_));
+  // the flow scrambles the particles: the state re-sorted when it pays (run/state_resort.hpp);
+  // distributed: the particles migrate to their owners instead
+  bool changes_particles() const override { return resort_.threshold > 0 || parts_; }
+  std::optional<TimeLoopHooks::Resize> after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) override {
+    if (!parts_) return resort_if_scrambled<2>(ot_.scheme, ot_.scheme.layout(), y, resort_, std::optional(box_));
+    const long steps = ++steps_;
+    if (steps % kMigrateEvery != 0) return std::nullopt;
+    std::vector<Real> state(y, y + layout().size()), kick = carried();
+    const bool with_kick = world_.allreduce(std::int64_t(kick.empty() ? 0 : 1), ReduceOp::Max) == 1;
+    migrate_spmhd(*parts_, ot_.scheme, state, with_kick ? &kick : nullptr, steps % kRepartitionEvery == 0);
+    TimeLoopHooks::Resize r{layout(), std::move(state), {}, {}, std::nullopt};
+    if (with_kick) r.carried = std::move(kick);
+    return r;
+  }
+  static constexpr long kMigrateEvery = 20, kRepartitionEvery = 100;
+  // Distributed: checkpoints of the whole vortex; a restart on any number of ranks takes this
+  // rank's RCB domain of the checkpoint's positions.
+  std::vector<std::int64_t> global_ids() const override {
+    return parts_ ? parts_->ids() : SceneRun::global_ids();
+  }
+  std::vector<std::int64_t> take_share(const Checkpoint& c) override {
+    if (!parts_) return SceneRun::take_share(c);
+    steps_ = static_cast<long>(c.scalar("steps"));  // the migration schedule continues
+    const StateLayout whole = layout().with_count(Species::Gas, parts_->global_particles());
+    if (c.y.size() != whole.size()) throw std::invalid_argument("--restart: the checkpoint holds another vortex");
+    const std::vector<std::int64_t>& ids = parts_->take_share(c.y.data() + whole.offset(Field::Position));
+    std::vector<Real> masses(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) masses[i] = ot_.particles.m[static_cast<std::size_t>(ids[i])];
+    ot_.scheme.set_particles(ids, std::move(masses));
+    y_ = share_of(whole, c.y, ids);
+    return ids;
   }
 
  private:
@@ -46,6 +92,10 @@ class OrszagTangRun final : public SceneRun {
   StateResortOptions resort_;
   PeriodicBox<2> box_ = unit_periodic_box();
   SpmhdFrame frame_;
+  Communicator world_;
+  std::optional<DistributedParticles<2>> parts_;  // distributed runs
+  std::vector<Real> y_;                           // distributed: this rank's initial state
+  long steps_ = 0;  // distributed: steps since t = 0 (the migration schedule; a restart: the checkpoint's)
 };
 
 // The summary from the run's whole diagnostics table (a restarted run summarises from t = 0).
@@ -114,6 +164,13 @@ void OrszagTangScene::add_options(OptionParser& p) {
         Range{0.0, 1.0});
 }
 
+void OrszagTangScene::check_options(const OptionParser& p, CoreOptions&, const RunControlOptions&, bool) {
+  if (world().distributed() && (variant_ == "euler" || variant_ == "all"))
+    p.fail("--variant", variant_ + (variant_ == "all" ? " (which includes euler)" : "") +
+                            " does not run distributed: Euler potentials are serial only; pick none, resistivity, "
+                            "cleaning or cleaning+resistivity");
+}
+
 std::vector<std::string> OrszagTangScene::run_names() const {
   return variant_ == "all" ? orszag_tang_variants() : std::vector<std::string>{variant_};
 }
@@ -140,7 +197,7 @@ std::string OrszagTangScene::scene_text(const std::string& variant) const {
 }
 
 std::unique_ptr<SceneRun> OrszagTangScene::make_run(const std::string& variant, const CoreOptions&) {
-  return std::make_unique<OrszagTangRun>(variant, params_);
+  return std::make_unique<OrszagTangRun>(variant, params_, world());
 }
 
 Real OrszagTangScene::predicted_particles(const std::string&) const {
@@ -160,7 +217,7 @@ void OrszagTangScene::finished(const std::string& variant, SceneRun&, const Time
 }
 
 int OrszagTangScene::report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) {
-  if (results_.empty()) return 0;
+  if (results_.empty() || world().rank() != 0) return 0;  // distributed: rank 0 reports
   std::ostringstream s;
   s << "variant, nx, mean_h_divB_over_B_t0.5, mean_h_divB_over_B_end, max_h_divB_over_B_end, total_energy_change, "
        "momentum_end, steps, rhs_evals, wall_s\n";

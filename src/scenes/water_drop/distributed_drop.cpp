@@ -4,60 +4,37 @@
 #include <string>
 
 #include "sphark/parallel/global_state.hpp"
-#include "sphark/parallel/migration.hpp"
 
 namespace sphark {
 
 DistributedDrop::DistributedDrop(const WaterDropConfig& config, Communicator comm)
-    : drop_(make_water_drop(config)), comm_(std::move(comm)), global_(drop_.particles()) {
-  const StateLayout all = drop_.model->layout();
-  own_domain_of(drop_.y0.data() + all.offset(Field::Position));
-  y_ = share_of(all, drop_.y0, ids_);
-  drop_.model->distribute(comm_, ids_);
-}
-
-// Every rank passes the positions of every particle to partition_rcb: the cuts are those of one
-// copy (each bin's weight P times over); this rank keeps the particles of its domain.
-void DistributedDrop::own_domain_of(const Real* x) {
-  domains_ = partition_rcb<2>(comm_, x, nullptr, global_, std::nullopt);
-  std::vector<int> owner(global_);
-  domains_.owners(x, global_, owner.data());
-  ids_.clear();
-  for (std::size_t a = 0; a < global_; ++a)
-    if (owner[a] == comm_.rank()) ids_.push_back(static_cast<std::int64_t>(a));
+    : drop_(make_water_drop(config)),
+      parts_(std::move(comm), drop_.y0.data() + drop_.model->layout().offset(Field::Position), drop_.particles()) {
+  y_ = share_of(drop_.model->layout(), drop_.y0, ids());
+  drop_.model->distribute(communicator(), ids());
 }
 
 const std::vector<std::int64_t>& DistributedDrop::take_share(const std::vector<Real>& y_all) {
-  const StateLayout all = drop_.model->layout().with_count(Species::Gas, global_);
+  const StateLayout all = drop_.model->layout().with_count(Species::Gas, global_particles());
   if (y_all.size() != all.size())  // (before the positions are read)
     throw std::invalid_argument("DistributedDrop::take_share: a state of " + std::to_string(y_all.size()) +
-                                " values for " + std::to_string(global_) + " particles");
-  own_domain_of(y_all.data() + all.offset(Field::Position));
-  y_ = share_of(all, y_all, ids_);
-  drop_.model->set_particles(ids_);
-  return ids_;
+                                " values for " + std::to_string(global_particles()) + " particles");
+  parts_.take_share(y_all.data() + all.offset(Field::Position));
+  y_ = share_of(all, y_all, ids());
+  drop_.model->set_particles(ids());
+  return ids();
 }
 
 std::size_t DistributedDrop::migrate(std::vector<Real>& y, std::vector<Real>* carried, bool repartition) {
-  const StateLayout& L = drop_.model->layout();
-  const std::size_t n = ids_.size();
-  const Real* x = y.data() + L.offset(Field::Position);
-  if (repartition) domains_ = partition_rcb<2>(comm_, x, nullptr, n, std::nullopt);
-  std::vector<int> owner(n);
-  domains_.owners(x, n, owner.data());
   const WaterDropConfig& c = drop_.config;
-  std::vector<Real> mass(n, c.rho0 * c.spacing * c.spacing);
-  ParticleData data;
-  data.ids = &ids_;
-  data.arrays = {{&mass, 1}};
-  data.states = {{&y, field_components(L)}};
-  if (carried) data.states.push_back({carried, field_components(L)});
-  data.mass.array = 0;
-  data.velocity.state = 0;
-  data.velocity.field = 1;
-  data.dim = 2;
-  const std::size_t sent = sphark::migrate(comm_, owner, data).sent;
-  drop_.model->set_particles(ids_);
+  std::vector<Real> mass(ids().size(), c.rho0 * c.spacing * c.spacing);
+  DistributedParticles<2>::Payload p;
+  p.y = &y;
+  p.components = field_components(drop_.model->layout());
+  p.masses = &mass;
+  if (carried) p.aligned_states = {carried};
+  const std::size_t sent = parts_.migrate(p, repartition);
+  drop_.model->set_particles(ids());
   return sent;
 }
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -19,25 +20,29 @@
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
 #include "sphark/simd/dispatch.hpp"
 #include "spmhd_density_sums.hpp"
+#include "spmhd_halo.hpp"
 
 namespace sphark {
 
 template <int D, class K>
 int SpmhdScheme<D, K>::build_neighbours(const Real* x) {
-  Real r_max = 0;
   for (std::size_t i = 0; i < n_; ++i) {
     list_h_[i] = std::max(h_[i], list_h_needed_[i]);
     list_h_needed_[i] = 0;
     radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
-    r_max = std::max(r_max, radii_[i]);
   }
+  if (halo_)  // the halo's radii: their owners' of this build (spmhd_distributed.cpp)
+    for (std::size_t s = n_; s < n_all_; ++s) radii_[s] = halo_->radius[perm_[s]];
+  Real r_max = 0;
+  for (std::size_t i = 0; i < n_all_; ++i) r_max = std::max(r_max, radii_[i]);
   if (const auto& box = ns_.box())  // the minimum image needs 2 r < the period: h has grown too far
     for (int k = 0; k < D; ++k)
       if (box->periodic[k] && 2 * r_max > box->hi[k] - box->lo[k]) {
         error_ = "smoothing length grew beyond half the periodic box (list radius " + std::to_string(r_max) + ")";
         return 1;
       }
-  ns_.build(x, n_, r_max, perm_.data(), radii_.data());  // rows sorted by particle index
+  // rows sorted by particle index (serially), by global id (distributed); the halo's rows empty
+  ns_.build(x, n_all_, r_max, slot_keys(), radii_.data(), n_);
   built_ = true;
   ++builds_;
   const NeighbourList& L = ns_.list();
@@ -53,12 +58,16 @@ int SpmhdScheme<D, K>::build_neighbours(const Real* x) {
 template <int D, class K>
 void SpmhdScheme<D, K>::sort_slots_by_cell() {
   order_ = ns_.cell_order();
+  if (halo_)  // this rank's particles first (their rows), then the halo, each in cell order
+    std::stable_partition(order_.begin(), order_.end(), [this](std::uint32_t s) { return s < n_; });
   ns_.renumber(order_);
+  // arrays of every slot (n_all_ entries) or of this rank's particles (n_: order_ starts with them)
   auto permute = [&](auto& v, int comps) {
     using T = typename std::decay_t<decltype(v)>::value_type;
-    if (v.size() != comps * n_) return;
+    const std::size_t count = v.size() / comps;
+    if (v.size() % comps != 0 || (count != n_ && count != n_all_)) return;
     permute_scratch_.resize(v.size());
-    for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t i = 0; i < count; ++i)
       for (int k = 0; k < comps; ++k) permute_scratch_[comps * i + k] = static_cast<Real>(v[comps * order_[i] + k]);
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<T>(permute_scratch_[i]);
   };
@@ -70,7 +79,12 @@ void SpmhdScheme<D, K>::sort_slots_by_cell() {
   permute(list_h_, 1);
   permute(radii_, 1);
   permute(divv_, 1);
+  if (halo_) {  // solved before the build (after a migration): they follow their particles
+    permute(rho_, 1);
+    permute(omega_, 1);
+  }
   permute(perm_, 1);  // slot indices < 2^31: exact through a double
+  if (halo_) permute(key_, 1);  // global ids < 2^32: exact too
 }
 
 // The initial guesses of the solve at t: the last iterates h_eval_ (solved at t_h_; h_ is one
@@ -96,16 +110,7 @@ void SpmhdScheme<D, K>::predict_smoothing_lengths(Real t) {
 // (the guess: the predicted h) exceeds its cap, or when the density solve reports an h beyond.
 template <int D, class K>
 int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
-  if (h_[0] <= 0) {
-    Vec<D> lo = Eigen::Map<const Vec<D>>(x), hi = lo;
-    for (std::size_t i = 1; i < n_; ++i) {
-      lo = lo.cwiseMin(Eigen::Map<const Vec<D>>(x + D * i));
-      hi = hi.cwiseMax(Eigen::Map<const Vec<D>>(x + D * i));
-    }
-    const Real volume = (hi - lo).prod();
-    std::fill(h_.begin(), h_.end(), opt_.eta * std::pow(volume / static_cast<Real>(n_), 1.0 / D));
-    h_eval_ = h_;
-  }
+  if (h_unset_) first_smoothing_lengths(x, true);
   predict_smoothing_lengths(t);
   h_guess_.assign(h_.begin(), h_.end());  // every attempt starts from the same guesses
   for (int attempt = 0; attempt < 8; ++attempt) {
@@ -159,6 +164,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   if (cand_.size() < stride * static_cast<std::size_t>(threads)) cand_.resize(stride * threads);
   const NeighbourList& L = ns_.list();
   const Real* m = ms_.data();
+  const std::uint32_t* key = slot_keys();  // each neighbour's lane: by particle number (global id)
   const MinimumImage<D> image(ns_.box());
   const Real eta_d = std::pow(opt_.eta, D), tol = opt_.h_tolerance;
   using spmhd_detail::DensitySums;
@@ -193,7 +199,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
           const Real r2 = image(x + D * i, x + D * j).squaredNorm();
           // without a branch (a third of the entries fall outside, unpredictably): every entry is
           // written at its lane's next place, which only a candidate keeps
-          const std::size_t l = perm_[j] & (lanes - 1), c = count[l] * lanes + l;  // lanes: 1, 2, 4 or 8
+          const std::size_t l = key[j] & (lanes - 1), c = count[l] * lanes + l;  // lanes: 1, 2, 4 or 8
           rc[c] = std::sqrt(r2);
           mc[c] = m[j];
           count[l] += r2 < r2_max;
@@ -241,7 +247,32 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   return {not_converged, outside, iterations, h_max};
 }
 
+// The first guess of h: eta (volume / N)^(1/D) from the bounding box of all positions.
+template <int D, class K>
+void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
+  constexpr Real inf = std::numeric_limits<Real>::infinity();
+  Real box[2 * D + 1];  // -lo, hi, count: one Allreduce (max) when distributed
+  for (int k = 0; k < D; ++k) box[k] = box[D + k] = -inf;
+  for (std::size_t i = 0; i < n_; ++i)
+    for (int k = 0; k < D; ++k) {
+      box[k] = std::max(box[k], -x[D * i + k]);
+      box[D + k] = std::max(box[D + k], x[D * i + k]);
+    }
+  box[2 * D] = static_cast<Real>(n_);
+  if (halo_) {
+    halo_->comm().allreduce(box, 2 * D, ReduceOp::Max);
+    box[2 * D] = halo_->comm().allreduce(box[2 * D], ReduceOp::Sum);
+  }
+  Real volume = 1;
+  for (int k = 0; k < D; ++k) volume *= box[D + k] + box[k];
+  if (!apply) return;
+  std::fill(h_.begin(), h_.begin() + n_, opt_.eta * std::pow(volume / box[2 * D], 1.0 / D));
+  std::copy(h_.begin(), h_.begin() + n_, h_eval_.begin());
+  h_unset_ = false;
+}
+
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
+  template void SpmhdScheme<D, K>::first_smoothing_lengths(const Real*, bool);                  \
   template int SpmhdScheme<D, K>::build_neighbours(const Real*);                               \
   template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real, const Real*); \

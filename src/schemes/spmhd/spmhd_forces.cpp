@@ -92,12 +92,12 @@ void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
   using R = Record<D>;
   const Real* psi = opt_.cleaning != Cleaning::None ? psi_.data() : nullptr;
   const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
-  records_.resize(R::size * n_);
+  records_.resize(R::size * n_all_);  // this rank's particles and the halo (distributed)
   const bool stream = stream_records(sizeof(Real) * records_.size());
 #pragma omp parallel
   {
 #pragma omp for schedule(static) nowait
-    for (std::size_t a = 0; a < n_; ++a) {
+    for (std::size_t a = 0; a < n_all_; ++a) {
       alignas(16) Real r[R::size];
       const Real inv_h = 1.0 / h_[a];
       Real s = inv_h * inv_h;
@@ -176,7 +176,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
     for (std::size_t i = 0; i < rows; ++i) {
       const std::size_t a = only ? (*only)[i] : i;
       if (a < spans.size())  // the records at the rows' leading edge (core/cache_hints.hpp)
-        prefetch_lines(&records_[Record<D>::size * std::min<std::size_t>(spans[a].second + kPrefetchSlotsAhead, n_ - 1)],
+        prefetch_lines(&records_[Record<D>::size * std::min<std::size_t>(spans[a].second + kPrefetchSlotsAhead, n_all_ - 1)],
                        sizeof(Real) * Record<D>::size);
       const PairSums<D> sums = row(in, a, inside);
       pairs += sums.pairs;

@@ -2,6 +2,7 @@
 // tensile-instability correction (seed 000, eq. (9)) injects; see SpmhdScheme::momentum_budget.
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "sphark/kernels/kernel_list.hpp"
@@ -29,6 +30,7 @@ const std::uint8_t* SpmhdScheme<D, K>::tensile_exclusion(const Real* y) {
 template <int D, class K>
 typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Real t, const Real* y) {
   MomentumBudget m;
+  if (halo_) throw std::logic_error("SpmhdScheme::momentum_budget: not for a distributed scheme");
   if (!opt_.evolve_particles || evaluate(t, y) != 0) {
     m.total.setConstant(std::numeric_limits<Real>::quiet_NaN());
     m.tensile = m.total;

@@ -13,6 +13,7 @@
 #include "sphark/operators/conjugate_cleaning.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/operators/pair_geometry.hpp"
+#include "spmhd_halo.hpp"
 
 namespace sphark {
 
@@ -84,12 +85,18 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
     layout_.add_species(Species::Sink, 0).add(Field::Position, 3).add(Field::Velocity, 3).add(Field::Mass, 1).add(Field::Spin, 3);
   }
   h_.assign(n_, opt_.h_initial > 0 ? opt_.h_initial : 0);  // 0: first guess from the bounding box, in prepare()
+  h_unset_ = !(opt_.h_initial > 0);
   allocate_per_particle();
   if (opt_.self_gravity) {
     if (D != 3 || !opt_.evolve_particles) throw std::invalid_argument("SpmhdScheme: self-gravity needs D = 3 and moving particles");
     gravity_ = make_self_gravity<K>(opt_.gravity_solver, GravityOptions{opt_.G, opt_.gravity_theta, 8, opt_.gravity_opening});
   }
 }
+
+template <int D, class K>
+SpmhdScheme<D, K>::~SpmhdScheme() = default;
+template <int D, class K>
+SpmhdScheme<D, K>::SpmhdScheme(SpmhdScheme&&) noexcept = default;
 
 template <int D, class K>
 std::vector<Real> SpmhdScheme<D, K>::resume_data() const {
@@ -102,6 +109,13 @@ std::vector<Real> SpmhdScheme<D, K>::resume_data() const {
   return data;
 }
 
+// resume_data(): h per particle [, then div v per particle and the time of h]
+template <int D, class K>
+OdeSystem::ResumeShape SpmhdScheme<D, K>::resume_shape() const {
+  const bool rate = opt_.predict_h && h_rate_known_;
+  return {rate ? 2 : 1, rate ? 1 : 0};
+}
+
 template <int D, class K>
 void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
   if (data.empty()) return;
@@ -111,6 +125,8 @@ void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
   if (with_rate && !std::all_of(data.begin() + n_, data.end(), [](Real v) { return std::isfinite(v); }))
     throw std::invalid_argument("SpmhdScheme::resume: a velocity divergence or the time of h is not finite");
   for (std::size_t s = 0; s < n_; ++s) h_[s] = h_eval_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
+  h_unset_ = false;
+  solved_ = false;  // the next evaluation solves from these starts
   if (with_rate) {
     for (std::size_t s = 0; s < n_; ++s) divv_[s] = data[n_ + perm_[s]];
     t_h_ = data[2 * n_];
@@ -121,9 +137,11 @@ void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
   evaluated_version_ = -1;
 }
 
-// Every per-particle buffer for n_ particles (h_ and x_ are set by the caller), slots = particles.
+// Every per-particle buffer for n_ particles (h_ and x_ are set by the caller), slots = particles
+// (no halo until the next evaluation).
 template <int D, class K>
 void SpmhdScheme<D, K>::allocate_per_particle() {
+  n_all_ = n_;
   h_eval_ = h_;  // no solve yet: the next starts from h_
   rho_.assign(n_, 0);
   omega_.assign(n_, 1);
@@ -161,8 +179,9 @@ void SpmhdScheme<D, K>::allocate_per_particle() {
 template <int D, class K>
 const std::vector<Real>& SpmhdScheme<D, K>::in_particle_order(const std::vector<Real>& slots, int comps,
                                                                ParticleOrderCache& c) const {
-  if (c.version == version_ && c.data.size() == slots.size()) return c.data;
-  c.data.resize(slots.size());
+  const std::size_t size = static_cast<std::size_t>(comps) * n_;  // this rank's particles (not the halo)
+  if (c.version == version_ && c.data.size() == size) return c.data;
+  c.data.resize(size);
   for (std::size_t s = 0; s < n_; ++s)
     for (int k = 0; k < comps; ++k) c.data[comps * perm_[s] + k] = slots[comps * s + k];
   c.version = version_;
@@ -207,45 +226,48 @@ template <int D, class K>
 int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
   ++version_;
   const Real* x = x_.data();
-  const std::uint32_t* p = perm_.data();
-  // gathers state entries (comps per particle) into slot order
-  auto gather = [&](Field f, int comps, std::vector<Real>& out) {
-    const Real* in = y + layout_.offset(f);
+  // gathers values (comps per particle, particle order) into the first `slots` slots
+  auto gather = [&](const Real* in, int comps, std::vector<Real>& out, std::size_t slots) {
+    const std::uint32_t* p = perm_.data();  // (a list build renumbers the slots)
 #pragma omp parallel for schedule(static)
-    for (std::size_t s = 0; s < n_; ++s)
+    for (std::size_t s = 0; s < slots; ++s)
       for (int k = 0; k < comps; ++k) out[comps * s + k] = in[comps * p[s] + k];
   };
-  if (opt_.evolve_particles) {
+  if (halo_) {
+    if (const int rc = distributed_prepare_positions(t, y)) return rc;  // collective (spmhd_distributed.cpp)
+  } else if (opt_.evolve_particles) {
     // Density, h and Omega depend on the positions only: skip the solve when they are unchanged
     // (bit for bit) since the last call, e.g. max_stable_dt or stiff_diagonal after rhs.
-    gather(Field::Position, D, x_from_state_);
+    gather(y + layout_.offset(Field::Position), D, x_from_state_, n_);
     if (!built_ || x_from_state_ != x_) {
       std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
       if (const int rc = ensure_neighbours_and_density(t, x)) {
         built_ = false;  // x_ is not what the lists and h were made for
         return rc;
       }
-      p = perm_.data();  // a rebuild renumbers the slots
     }
-    gather(Field::Velocity, D, v_);
-    if (!opt_.barotropic) gather(Field::InternalEnergy, 1, u_);
   } else if (!built_) {
     if (const int rc = ensure_neighbours_and_density(t, x)) return rc;
-    p = perm_.data();
   }
-  if (!psi_.empty()) gather(Field::Psi, 1, psi_);
+  // the other fields of every slot: the state's, or local + halo when distributed
+  auto source = [&](Field f) { return field_source(f, y); };
+  if (opt_.evolve_particles) {
+    gather(source(Field::Velocity), D, v_, n_all_);
+    if (!opt_.barotropic) gather(source(Field::InternalEnergy), 1, u_, n_all_);
+  }
+  if (!psi_.empty()) gather(source(Field::Psi), 1, psi_, n_all_);
   if (opt_.field == FieldRepresentation::MagneticField) {
-    gather(Field::MagneticField, 3, B_);
+    gather(source(Field::MagneticField), 3, B_, n_all_);
   } else {
     ScopedPhase timer(Phase::Forces);
-    gather(Field::EulerAlpha, 1, alpha_);
+    gather(source(Field::EulerAlpha), 1, alpha_, n_);
     euler_potential_field(x, alpha_.data());
   }
   const Real* u = opt_.evolve_particles && !opt_.barotropic ? u_.data() : nullptr;
   const BarotropicEos* eos = eos_ ? &*eos_ : nullptr;
   Real cmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : cmax)
-  for (std::size_t a = 0; a < n_; ++a) {
+  for (std::size_t a = 0; a < n_all_; ++a) {  // the halo's too: its records (pair_loop_arrays)
     if (eos) {
       P_[a] = eos->pressure(rho_[a]);
       sound_speed_[a] = eos->sound_speed(rho_[a]);
@@ -258,8 +280,9 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
     fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);
     cmax = std::max(cmax, fast_speed_[a]);
   }
+  if (halo_) cmax = halo_->comm().allreduce(cmax, ReduceOp::Max);  // the global c_h
   cleaning_speed_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
-  for (std::size_t a = 0; a < n_; ++a)
+  for (std::size_t a = 0; a < n_all_; ++a)
     cleaning_speeds_[a] =
         opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
   if (!std::isfinite(cleaning_speed_)) {
@@ -282,11 +305,14 @@ int SpmhdScheme<D, K>::rhs(Real t, const Real* y, Real* ydot) {  // may throw: t
 
 template <int D, class K>
 int SpmhdScheme<D, K>::evaluate(Real t, const Real* y) noexcept {
-  // y evaluated last (no rhs() or prepare() since): every per-particle array is already y's
-  if (evaluated_version_ == version_ && std::equal(y, y + layout_.size(), evaluated_y_.begin())) return 0;
   const double pairs_before = pairs_total_;
   int rc = 0;
   try {  // diagnostics and frames: an exception becomes a failure code with its message
+    // y evaluated last (no rhs() or prepare() since): every per-particle array is already y's
+    // (distributed: on every rank, or every rank evaluates)
+    bool same = evaluated_version_ == version_ && std::equal(y, y + layout_.size(), evaluated_y_.begin());
+    if (halo_) same = halo_->comm().allreduce(std::int64_t(same ? 1 : 0), ReduceOp::Min) == 1;
+    if (same) return 0;
     rc = rhs(t, y, scratch_.data());
   } catch (...) {
     error_ = current_exception_message("SpmhdScheme::evaluate");

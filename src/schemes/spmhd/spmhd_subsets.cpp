@@ -10,6 +10,7 @@
 // are computed for all and kept for the active particles. So a fast evaluation costs the
 // active rows plus O(N) per-particle work, and a tree walk with gravity.
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 #include <limits>
 
@@ -22,6 +23,7 @@ namespace sphark {
 
 template <int D, class K>
 int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) {
+  if (halo_) throw std::logic_error("SpmhdScheme::rhs_subset: not for a distributed scheme");
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
   if (const int rc = prepare(t, y); rc != 0) return rc;
@@ -54,6 +56,7 @@ constexpr Real kNeighbourStepFactor = 4;
 
 template <int D, class K>
 int SpmhdScheme<D, K>::particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) {
+  if (halo_) throw std::logic_error("SpmhdScheme::particle_stable_dt: not for a distributed scheme");
   if (stable_steps(t, y, ydot, courant_steps_, force_steps_) != 0) return 1;  // error_ says why
   std::vector<Real>& own = courant_steps_;
   for (std::size_t a = 0; a < n_; ++a) own[a] = std::min(courant_steps_[a], force_steps_[a]);

@@ -10,9 +10,7 @@ Halo<D>::Halo(Communicator comm, std::optional<PeriodicBox<D>> box) : comm_(comm
 
 template <int D>
 void Halo<D>::set_particles(std::vector<std::int64_t> ids) {
-  for (const std::int64_t id : ids)
-    if (id < 0 || id > std::int64_t(std::numeric_limits<std::uint32_t>::max()))
-      throw std::invalid_argument("WcsphSystem: global id " + std::to_string(id) + " outside [0, 2^32)");
+  check_key_ids(ids, "WcsphSystem");
   ids_ = std::move(ids);
   built_ = false;
 }

@@ -3,6 +3,8 @@
 // the ids of its pieces' points (Int64 "id", which is not compared as a value). Exit 0 and
 // "frames equal: ..." if every point and every array of the first frame is found unchanged, for
 // every id exactly once, in the second; exit 1 with the first difference.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
@@ -51,6 +53,26 @@ bool equal_points(const VtpContents& s, const VtpContents& d, std::size_t a, std
   }
   return true;
 }
+
+// After a difference: the largest relative difference of the points and of each array.
+void print_differences(const Frame& s, const Frame& d) {
+  auto relative = [](Real a, Real b) { return std::abs(a - b) / std::max<Real>(1e-300, std::max(std::abs(a), std::abs(b))); };
+  Real points = 0;
+  for (std::size_t id = 0; id < s.contents.count; ++id)
+    for (int k = 0; k < 3; ++k)
+      points = std::max(points, relative(s.contents.points[3 * s.point_of_id[id] + k], d.contents.points[3 * d.point_of_id[id] + k]));
+  std::printf("  points: max relative difference %.3g\n", points);
+  for (const VtpArray& arr : s.contents.arrays) {
+    if (arr.name == "id") continue;
+    const VtpArray* other = d.contents.find(arr.name);
+    const std::size_t c = static_cast<std::size_t>(arr.components);
+    Real worst = 0;
+    for (std::size_t id = 0; id < s.contents.count; ++id)
+      for (std::size_t k = 0; k < c; ++k)
+        worst = std::max(worst, relative(arr.values[c * s.point_of_id[id] + k], other->values[c * d.point_of_id[id] + k]));
+    std::printf("  %s: max relative difference %.3g\n", arr.name.c_str(), worst);
+  }
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -64,11 +86,17 @@ int main(int argc, char** argv) {
       if (!d.contents.find(arr.name) || d.contents.find(arr.name)->components != arr.components) return differ("arrays");
       ++compared;
     }
+    std::size_t first = s.contents.count, unequal = 0;
     for (std::size_t id = 0; id < s.contents.count; ++id)
       if (!equal_points(s.contents, d.contents, s.point_of_id[id], d.point_of_id[id])) {
-        std::printf("frames differ at particle %zu\n", id);
-        return 1;
+        first = std::min(first, id);
+        ++unequal;
       }
+    if (unequal > 0) {
+      std::printf("frames differ at particle %zu (%zu of %zu particles differ)\n", first, unequal, s.contents.count);
+      print_differences(s, d);
+      return 1;
+    }
     std::printf("frames equal: %zu particles, %zu arrays\n", s.contents.count, compared);
     return 0;
   } catch (const std::exception& e) {

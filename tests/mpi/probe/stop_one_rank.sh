@@ -20,6 +20,9 @@ cat "$OUT.log"
 grep -q "cleaned run stopped by signal 2 at t=" "$OUT.log" || { echo "no stop message"; exit 1; }
 grep -q '"outcome": "stopped"' "$OUT/run.json" || { echo "run.json: not stopped"; exit 1; }
 grep -q "continue with --restart" "$OUT.log" || { echo "no checkpoint"; exit 1; }
-"$MPIEXEC" --oversubscribe --allow-run-as-root -np 3 "$DROP" --restart "$OUT/cleaned/checkpoint.bin" --t-end 0.001 \
+# on to 0.0005 past the stop (wherever the signal found the run)
+T_STOP=$(sed -n 's/.*cleaned run stopped by signal 2 at t=\([0-9.e+-]*\);.*/\1/p' "$OUT.log" | head -n 1)
+T_END=$(awk -v t="$T_STOP" 'BEGIN { printf "%.6g", t + 0.0005 }')
+"$MPIEXEC" --oversubscribe --allow-run-as-root -np 3 "$DROP" --restart "$OUT/cleaned/checkpoint.bin" --t-end "$T_END" \
   --out "$OUT.restarted" > "$OUT.restarted.log" 2>&1 || { cat "$OUT.restarted.log"; echo "the 3-rank restart failed"; exit 1; }
-echo "every rank stopped (exit 130); the checkpoint continued on 3 ranks to t = 0.001"
+echo "every rank stopped (exit 130) at t = $T_STOP; the checkpoint continued on 3 ranks to t = $T_END"

@@ -17,6 +17,10 @@ class OrszagTangScene final : public Scene {
   std::vector<std::string> stepper_names() const override;
   std::string checkpoint_help() const override { return "<out>/<variant>/checkpoint.bin"; }
   void add_options(OptionParser& p) override;
+  // Under mpirun: Euler potentials (and "all", which includes them) are refused (not distributed).
+  void check_options(const OptionParser& p, CoreOptions& core, const RunControlOptions& control,
+                     bool restarting) override;
+  bool supports_distributed_runs() const override { return true; }  // mpirun: SpmhdScheme::distribute
   std::vector<std::string> run_names() const override;
   std::filesystem::path subdirectory(const std::string& run) const override;
   void check_restart_run(const OptionParser& p, const std::string& checkpoint_run) const override;

@@ -9,7 +9,7 @@
 
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/diagnostics/wcsph_diagnostics.hpp"
-#include "sphark/parallel/decomposition.hpp"
+#include "sphark/parallel/distributed_particles.hpp"
 #include "sphark/scenes/water_drop/water_drop.hpp"
 
 namespace sphark {
@@ -22,10 +22,10 @@ class DistributedDrop {
   // drop().model holds this rank's particles; drop().y0 is the whole drop's initial state.
   WaterDrop& drop() { return drop_; }
   WcsphModel& model() { return *drop_.model; }
-  const std::vector<std::int64_t>& ids() const { return ids_; }
+  const std::vector<std::int64_t>& ids() const { return parts_.ids(); }
   std::vector<Real>& state() { return y_; }  // this rank's particles' (field-major, model().layout())
-  std::size_t global_particles() const { return global_; }
-  const Communicator& communicator() const { return comm_; }
+  std::size_t global_particles() const { return parts_.global_particles(); }
+  const Communicator& communicator() const { return parts_.communicator(); }
 
   // Collective. Every particle to the owner of its position in y (this rank's state; the domains
   // recomputed first when `repartition`), with y and `carried` (if not null: entries aligned
@@ -41,14 +41,9 @@ class DistributedDrop {
   std::size_t migrate(Stepper& stepper, bool repartition, Real atol = 0);
 
  private:
-  void own_domain_of(const Real* x);  // every particle's positions: domains_ and ids_
-
   WaterDrop drop_;
-  Communicator comm_;
-  Decomposition<2> domains_;
-  std::vector<std::int64_t> ids_;
+  DistributedParticles<2> parts_;  // RCB domains, the ids, migration
   std::vector<Real> y_;
-  std::size_t global_ = 0;
 };
 
 // Collective: the diagnostics of the whole drop from each rank's of its n particles.

@@ -27,10 +27,16 @@
 #include "sphark/integrate/ode_system.hpp"
 #include "sphark/kernels/kernels.hpp"
 #include "sphark/neighbours/neighbour_method.hpp"
+#include "sphark/parallel/communicator.hpp"
 #include "sphark/schemes/spmhd/spmhd_options.hpp"
 #include "sphark/state/state_layout.hpp"
 
 namespace sphark {
+
+namespace spmhd_detail {
+template <int D>
+class Halo;  // src/schemes/spmhd/spmhd_halo.hpp
+}
 
 template <int D, class K = CubicSpline<D>>
 class SpmhdScheme final : public OdeSystem {
@@ -39,6 +45,34 @@ class SpmhdScheme final : public OdeSystem {
   // !opt.evolve_particles and ignored otherwise. Throws std::invalid_argument on bad input.
   SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::optional<PeriodicBox<D>> box = std::nullopt,
               std::vector<Real> fixed_positions = {});
+  ~SpmhdScheme() override;
+  SpmhdScheme(SpmhdScheme&&) noexcept;
+
+  // Distributed runs (src/schemes/spmhd/spmhd_distributed.cpp; docs/scaling.md, "SPMHD"): the
+  // scheme holds the particles `ids` (global ids < 2^32) of this rank, the scheme having been
+  // built with every particle, particle k being global id k (their masses are kept). Every
+  // call that evaluates (rhs, max_stable_dt, stiff_diagonal, evaluate) is then collective: it
+  // exchanges a halo of the other ranks' particles within reach (the state, then h, rho and
+  // Omega after the density solve), and every rank takes the same decisions (list rebuilds, the
+  // density solve's retries, failures). Rows are summed in global-id order, so a distributed
+  // run reproduces the serial one bit for bit. For moving particles with the magnetic field,
+  // without gravity or sinks; the stepper sees the local state (StepperOptions::communicator).
+  void distribute(Communicator comm, const std::vector<std::int64_t>& ids);
+  // Collective, between steps (a migration): this rank now holds `ids` with `masses`; then
+  // restore_migrated() with their migration_data(), or resume() (a restart: the next evaluation
+  // solves from the starts).
+  void set_particles(std::vector<std::int64_t> ids, std::vector<Real> masses);
+  // What a particle's density solve has reached, so that a migrated particle continues exactly as
+  // in the serial run (spmhd_migration.hpp): per particle (particle-major) the last iterate, h,
+  // rho, Omega, div v and the positions they were solved at; then the time of h and whether div v
+  // is known. The next evaluation at those positions then solves nothing, as the serial run's
+  // (which skips the solve when the positions are unchanged).
+  static constexpr int kMigrationValues = 5 + D;
+  std::vector<Real> migration_data() const;
+  void restore_migrated(std::span<const Real> data);
+  bool distributed() const { return halo_ != nullptr; }
+  const std::vector<std::int64_t>& ids() const;  // distributed: this rank's global ids
+  const Communicator& communicator() const;      // distributed: the ranks'; else a serial one
 
   const StateLayout& layout() const { return layout_; }
   const SpmhdOptions& options() const { return opt_; }
@@ -75,7 +109,7 @@ class SpmhdScheme final : public OdeSystem {
   // active particles. particle_stable_dt: min(Courant, force criterion) of each gas particle
   // (stable_steps), capped at 4 x that of any neighbour within the kernel support (Saitoh &
   // Makino 2009); a sink's is the shortest gas step.
-  bool supports_subsets() const override { return opt_.evolve_particles; }
+  bool supports_subsets() const override { return opt_.evolve_particles && !halo_; }
   int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override;
   int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override;
 
@@ -133,6 +167,7 @@ class SpmhdScheme final : public OdeSystem {
   // checkpoint) or 2 N + 1.
   std::vector<Real> resume_data() const override;
   void resume(std::span<const Real> data) override;
+  ResumeShape resume_shape() const override;
 
   // The momentum budget of the RHS at y (diagnostics; refreshes the scheme at y, evaluate()):
   // `total` = sum_a m_a dv_a/dt over gas and sinks, and `tensile` its part from the tensile-
@@ -189,9 +224,28 @@ class SpmhdScheme final : public OdeSystem {
   void sort_slots_by_cell();  // after a list build: renumber slots in cell order
 
   std::size_t n_;
+  // Slots 0 .. n_ - 1 hold this rank's particles, n_ .. n_all_ - 1 the halo (distributed runs;
+  // n_all_ = n_ serially). Per-slot arrays that neighbours read (x_, h_, ms_, rho_, ...) have
+  // n_all_ entries; those of the own particles only (h_eval_, divv_, list_h_, ...) n_.
+  std::size_t n_all_ = 0;
+  std::unique_ptr<spmhd_detail::Halo<D>> halo_;  // distributed runs
+  bool h_unset_ = false;                         // no h yet: the first guess from the bounding box
+  bool solved_ = false;  // distributed: h_, rho_, omega_ of the local particles solved at x_ (lists maybe not)
+  // Distributed parts (spmhd_distributed.cpp).
+  int distributed_prepare_positions(Real t, const Real* y);   // collective: halo, lists, density
+  int distributed_density_attempt(Real t, const Real* y, int attempt, std::string& message);
+  void resize_slots(std::size_t all);                          // n_all_ after a new halo plan
+  void exchange_density();                                     // collective: h, rho, Omega of the halo
+  const Real* field_source(Field f, const Real* y) const;      // particle-order values of f (local + halo)
+  const std::uint32_t* slot_keys() const;                      // rows' sort keys: global ids per slot
+  // h_ from the bounding box of every rank's positions x (collective when distributed), on
+  // this rank if `apply`
+  void first_smoothing_lengths(const Real* x, bool apply);
+  std::vector<Real> new_radius_, plan_radius_;                 // distributed: particle order
   std::vector<Real> m_;     // masses, particle order
   std::vector<Real> ms_;    // masses, slot order
   std::vector<std::uint32_t> perm_, order_;  // slot -> particle; scratch of sort_slots_by_cell
+  std::vector<std::uint32_t> key_;           // distributed: slot -> global id
   std::vector<Real> permute_scratch_;
   std::vector<Real> x_from_state_, v_, u_, psi_, alpha_;  // inputs gathered from the state (slot order)
   long version_ = 0;                                      // bumped by every prepare()
