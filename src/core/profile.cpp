@@ -13,6 +13,7 @@ const char* phase_name(Phase p) {
     case Phase::Rhs: return "rhs (total)";
     case Phase::Advance: return "advance (total)";
     case Phase::Output: return "output";
+    case Phase::Halo: return "halo exchange (+ waiting)";
     case Phase::Count: break;
   }
   return "?";
@@ -32,12 +33,13 @@ void RunProfile::print(std::ostream& os, double wall) const {
   };
   const double rhs = seconds(Phase::Rhs);
   const double advance = seconds(Phase::Advance);
-  const double parts =
-      seconds(Phase::Neighbours) + seconds(Phase::DensityH) + seconds(Phase::Forces);
+  const double parts = seconds(Phase::Neighbours) + seconds(Phase::DensityH) + seconds(Phase::Forces) +
+                       seconds(Phase::Halo);
   os << "profile (wall time):\n";
   line("neighbours", seconds(Phase::Neighbours), calls(Phase::Neighbours));
   line("density/h solve", seconds(Phase::DensityH), calls(Phase::DensityH));
   line("forces", seconds(Phase::Forces), calls(Phase::Forces));
+  if (calls(Phase::Halo) > 0) line("halo exchange (+ waiting)", seconds(Phase::Halo), calls(Phase::Halo));
   line("other rhs work", rhs > parts ? rhs - parts : 0.0, calls(Phase::Rhs));
   line("stepper (ARKODE vector work etc.)", advance > rhs ? advance - rhs : 0.0,
        calls(Phase::Advance));

@@ -1,6 +1,7 @@
 #include "sphark/parallel/halo.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -28,24 +29,64 @@ Real box_distance2(const Vec<D>& p, const Real* lo, const Real* hi) {
   return d2;
 }
 
-// Image shifts (one per combination of -L, 0, +L on the periodic axes).
+// Image shifts (one per combination of -2L, -L, 0, +L, +2L on the periodic axes: the ranks'
+// coordinates lie in [lo, lo + 2L), compact_periodic_coordinates, so two of them differ by less
+// than 2L).
 template <int D>
 std::vector<Vec<D>> image_shifts(const std::optional<PeriodicBox<D>>& box) {
   std::vector<Vec<D>> shifts{Vec<D>::Zero()};
   for (int k = 0; k < D; ++k) {
     if (!(box && box->periodic[k])) continue;
     const std::size_t m = shifts.size();
-    for (int sign : {-1, 1})
+    for (int multiple : {-2, -1, 1, 2})
       for (std::size_t j = 0; j < m; ++j) {
         Vec<D> s = shifts[j];
-        s[k] += sign * (box->hi[k] - box->lo[k]);
+        s[k] += multiple * (box->hi[k] - box->lo[k]);
         shifts.push_back(s);
       }
   }
   return shifts;
 }
 
-// Per rank: [lo (D), hi (D), r_max] of its (wrapped) particles; empty ranks have lo > hi.
+// Along each periodic axis, the wrapped coordinates xw of this rank's particles moved by a period
+// below a pivot in the largest gap between them (found on 4096 bins of the period), when that
+// makes their interval shorter: a rank whose particles straddle the periodic face (one crossed it
+// since the last migration) keeps a compact box reaching past hi instead of one spanning the
+// whole period. The box and the particles' coordinates stay in the same representation; other
+// ranks' images are tested in both directions (candidates()).
+template <int D>
+void compact_periodic_coordinates(std::vector<Real>& xw, std::size_t n, const std::optional<PeriodicBox<D>>& box) {
+  constexpr int kBins = 4096;
+  std::vector<char> occupied(kBins);
+  for (int k = 0; box && k < D; ++k) {
+    if (!box->periodic[k] || n == 0) continue;
+    const Real lo_box = box->lo[k], period = box->hi[k] - lo_box;
+    std::fill(occupied.begin(), occupied.end(), 0);
+    for (std::size_t i = 0; i < n; ++i)
+      occupied[std::clamp(static_cast<int>((xw[D * i + k] - lo_box) / period * kBins), 0, kBins - 1)] = 1;
+    int best_start = -1, best_length = 0;  // the longest circular run of empty bins
+    for (int start = 0; start < kBins; ++start) {
+      if (occupied[start] || !occupied[(start + kBins - 1) % kBins]) continue;  // runs start after an occupied bin
+      int length = 0;
+      while (length < kBins && !occupied[(start + length) % kBins]) ++length;
+      if (length > best_length) best_start = start, best_length = length;
+    }
+    if (best_start < 0) continue;  // every bin occupied, or none empty after an occupied one
+    Real pivot = lo_box + period * (best_start + 0.5 * best_length) / kBins;  // the gap's middle
+    if (pivot >= lo_box + period) pivot -= period;  // (a gap across the face): coordinates in [lo, lo + 2 period)
+    Real lo = kInf, hi = -kInf, lo_moved = kInf, hi_moved = -kInf;
+    auto moved = [&](Real v) { return v < pivot ? v + period : v; };
+    for (std::size_t i = 0; i < n; ++i) {
+      const Real v = xw[D * i + k];
+      lo = std::min(lo, v), hi = std::max(hi, v);
+      lo_moved = std::min(lo_moved, moved(v)), hi_moved = std::max(hi_moved, moved(v));
+    }
+    if (!(hi_moved - lo_moved < hi - lo)) continue;
+    for (std::size_t i = 0; i < n; ++i) xw[D * i + k] = moved(xw[D * i + k]);
+  }
+}
+
+// Per rank: [lo (D), hi (D), r_max] of its particles (xw); empty ranks have lo > hi.
 template <int D>
 std::vector<Real> gather_bounds(const Communicator& comm, const std::vector<Real>& xw, const Real* r, std::size_t n) {
   Real mine[2 * D + 1];
@@ -129,6 +170,7 @@ void HaloPlan<D>::build(const Real* x, const Real* r, const std::int64_t* ids, s
   skin_ = skin;
   std::vector<Real> xw(x, x + D * n);
   if (box_ && box_->any_periodic()) box_->wrap_all(x, n, xw.data());
+  compact_periodic_coordinates<D>(xw, n, box_);
   const std::vector<Real> bounds = gather_bounds<D>(comm_, xw, r, n);
   Real r_global = 0;
   for (int p = 0; p < ranks; ++p) r_global = std::max(r_global, bounds[(2 * D + 1) * p + 2 * D]);
@@ -196,33 +238,40 @@ void HaloPlan<D>::exchange(Real* field, int components) {
 
 template <int D>
 void HaloPlan<D>::exchange(std::span<const Field> fields) {
+  split_.clear();
+  for (const Field& f : fields) split_.push_back({f.data, f.data + local_ * f.components, f.components});
+  exchange(std::span<const SplitField>(split_));
+}
+
+template <int D>
+void HaloPlan<D>::exchange(std::span<const SplitField> fields) {
   std::size_t width = 0;
-  for (const Field& f : fields) width += static_cast<std::size_t>(f.components);
+  for (const SplitField& f : fields) width += static_cast<std::size_t>(f.components);
   if (send_buffer_.size() < width * send_index_.size()) send_buffer_.resize(width * send_index_.size());
   if (receive_buffer_.size() < width * halo()) receive_buffer_.resize(width * halo());
   for (std::size_t k = 0; k < send_index_.size(); ++k) {
     Real* out = send_buffer_.data() + width * k;
-    for (const Field& f : fields)
-      for (int c = 0; c < f.components; ++c) *out++ = f.data[send_index_[k] * f.components + c];
+    for (const SplitField& f : fields)
+      for (int c = 0; c < f.components; ++c) *out++ = f.local[send_index_[k] * f.components + c];
   }
   exchange_bytes(width);
   for (std::size_t k = 0; k < halo(); ++k) {
     const Real* in = receive_buffer_.data() + width * k;
-    for (const Field& f : fields)
-      for (int c = 0; c < f.components; ++c) f.data[(local_ + k) * f.components + c] = *in++;
+    for (const SplitField& f : fields)
+      for (int c = 0; c < f.components; ++c) f.halo[k * f.components + c] = *in++;
   }
 }
 
 template <int D>
 bool HaloPlan<D>::still_valid(const Real* x, const Real* r) const {
-  Real moved = 0, grown = 0;
+  Real moved2 = 0, grown = 0;  // (squared displacements: one square root)
   for (std::size_t i = 0; i < local_; ++i) {
     Vec<D> d = Eigen::Map<const Vec<D>>(x + D * i) - Eigen::Map<const Vec<D>>(x_built_.data() + D * i);
     if (box_) d = box_->minimum_image(d);
-    moved = std::max(moved, d.norm());
+    moved2 = std::max(moved2, d.squaredNorm());
     grown = std::max(grown, r[i] - r_built_[i]);
   }
-  return comm_.allreduce(2 * moved + grown, ReduceOp::Max) <= skin_;
+  return comm_.allreduce(2 * std::sqrt(moved2) + grown, ReduceOp::Max) <= skin_;
 }
 
 template class HaloPlan<1>;

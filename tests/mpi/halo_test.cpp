@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 
 #include "mpi_env.hpp"
 #include "particles.hpp"
@@ -116,6 +117,33 @@ TEST(Halo, Random3DPeriodic) { check_halo<3>(false, true, false); }
 TEST(Halo, Lattice3DPeriodic) { check_halo<3>(true, true, false); }
 TEST(Halo, Lattice3DOpen) { check_halo<3>(true, false, false); }
 TEST(Halo, ScatteredOwnership2DPeriodic) { check_halo<2>(false, true, true); }
+
+// Domains cut for the positions, then every particle moved by 0.03 +- 0.01 along x and y (the
+// state's coordinates, not wrapped: some pass 1): each rank's particles straddle its cuts and,
+// for the last slabs, the periodic faces. The halo stays exact and compact (its coordinates are taken past
+// the face, compact_periodic_coordinates): at most 1.5 times that of the unmoved domains, where
+// a bounding box of the wrapped coordinates would take the whole period.
+TEST(Halo, DomainsStraddlingThePeriodicFaceStayCompact) {
+  const auto g = testing::make_particles<2>(1600, true, 0.04, 11);
+  const auto box = testing::unit_box<2>(true);
+  Part<2> p = local_part<2>(g, box, false);
+  const std::size_t n = p.ids.size();
+  HaloPlan<2> before(world(), box);
+  before.build(p.x.data(), p.r.data(), p.ids.data(), n);
+  auto moved = g;
+  for (std::size_t i = 0; i < 2 * g.size(); ++i) moved.x[i] += 0.03 + 0.01 * std::sin(7.1 * double(i));
+  for (std::size_t a = 0; a < n; ++a) p.x[2 * a] = moved.x[2 * p.ids[a]], p.x[2 * a + 1] = moved.x[2 * p.ids[a] + 1];
+  HaloPlan<2> plan(world(), box);
+  plan.build(p.x.data(), p.r.data(), p.ids.data(), n);
+  std::vector<Real> x_all(p.x), r_all(p.r);
+  x_all.resize(2 * (n + plan.halo()));
+  r_all.resize(n + plan.halo());
+  plan.exchange({{x_all.data(), 2}, {r_all.data(), 1}});
+  EXPECT_EQ(testing::global_sum(std::int64_t(mismatches<2>(moved.x, moved.r, p, plan, x_all, r_all, box))), 0);
+  const std::int64_t unmoved = testing::global_sum(std::int64_t(before.halo()));
+  const std::int64_t straddling = testing::global_sum(std::int64_t(plan.halo()));
+  EXPECT_LE(2 * straddling, 3 * unmoved) << "halo " << straddling << " particles, unmoved " << unmoved;
+}
 
 // Built with a skin, the plan stays exact for moved particles and grown radii while
 // still_valid() holds; beyond that still_valid() is false on every rank.

@@ -22,6 +22,7 @@ enum class Phase : std::size_t {
   Rhs,         // one whole RHS evaluation (encloses the three above)
   Advance,     // inside Stepper::advance (encloses Rhs)
   Output,      // VTK, CSV, checkpoints, diagnostics
+  Halo,        // distributed runs: halo plans, exchanges and agreements (with the waiting for other ranks)
   Count
 };
 

@@ -72,6 +72,14 @@ class HaloPlan {
   // Collective: several arrays in one message per partner.
   void exchange(std::initializer_list<Field> fields) { exchange(std::span<const Field>(fields.begin(), fields.size())); }
   void exchange(std::span<const Field> fields);
+  // The same with the local values and the halo's apart: local[i * components + c] (i < local())
+  // are sent, halo[k * components + c] (k < halo()) received.
+  struct SplitField {
+    const Real* local;
+    Real* halo;
+    int components;
+  };
+  void exchange(std::span<const SplitField> fields);
 
   // Collective: true on every rank if the plan built with `skin` still holds every pair for
   // these positions and radii (2 max displacement + max radius growth <= skin on every rank).
@@ -93,6 +101,7 @@ class HaloPlan {
   std::vector<Real> send_buffer_, receive_buffer_, x_built_, r_built_;
   std::vector<Communicator::Send> sends_;
   std::vector<Communicator::Receive> receives_;
+  std::vector<SplitField> split_;  // exchange(Field): kept (no allocation once grown)
   HaloStats stats_;
 };
 

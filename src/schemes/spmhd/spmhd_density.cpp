@@ -32,7 +32,7 @@ int SpmhdScheme<D, K>::build_neighbours(const Real* x) {
     radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
   }
   if (halo_)  // the halo's radii: their owners' of this build (spmhd_distributed.cpp)
-    for (std::size_t s = n_; s < n_all_; ++s) radii_[s] = halo_->radius[perm_[s]];
+    for (std::size_t s = n_; s < n_all_; ++s) radii_[s] = halo_->radius[perm_[s] - n_];
   Real r_max = 0;
   for (std::size_t i = 0; i < n_all_; ++i) r_max = std::max(r_max, radii_[i]);
   if (const auto& box = ns_.box())  // the minimum image needs 2 r < the period: h has grown too far

@@ -16,9 +16,11 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
@@ -108,11 +110,6 @@ const Communicator& SpmhdScheme<D, K>::communicator() const {
 }
 
 template <int D, class K>
-const Real* SpmhdScheme<D, K>::field_source(Field f, const Real* y) const {
-  return halo_ ? halo_->field(f) : y + layout_.offset(f);
-}
-
-template <int D, class K>
 const std::uint32_t* SpmhdScheme<D, K>::slot_keys() const {
   return halo_ ? key_.data() : perm_.data();
 }
@@ -148,14 +145,11 @@ int SpmhdScheme<D, K>::distributed_prepare_positions(Real t, const Real* y) {
   std::int64_t flags[3] = {moved_here ? 1 : 0, h_unset_ ? 1 : 0, built_ ? 0 : 1};
   halo.comm().allreduce(flags, 3, ReduceOp::Max);
   std::string message;
-  if (flags[0] == 0 && flags[2] == 0) {  // the halo's positions are unchanged too: its other fields only
-    halo.exchange_state(y, layout_, m_, new_radius_);
-    return 0;
-  }
+  if (flags[0] == 0 && flags[2] == 0) return 0;  // the halo's positions are unchanged too
+  halo_density_stale_ = true;  // (every rank alike) exchange_halo_fields sends h, rho, Omega
   if (flags[0] == 0) {  // migrated particles, solved where they are: the halo and lists only
     const int code = distributed_density_attempt(t, y, -1, message);
     if (code != 0) error_ = message;
-    if (code == 0) exchange_density();
     return code;
   }
   std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
@@ -175,7 +169,6 @@ int SpmhdScheme<D, K>::distributed_prepare_positions(Real t, const Real* y) {
   }
   t_h_ = t;
   solved_ = true;
-  exchange_density();
   return 0;
 }
 
@@ -194,13 +187,14 @@ int SpmhdScheme<D, K>::distributed_density_attempt(Real t, const Real* y, int at
     new_radius_[perm_[s]] = r;
     plan_radius_[perm_[s]] = built_ ? std::max(r, radii_[s]) : r;  // the lists in use, or a rebuild's
   }
+  std::optional<ScopedPhase> timer(std::in_place, Phase::Halo);
   const bool new_plan = halo.update_plan(y + layout_.offset(Field::Position), plan_radius_, opt_.skin / (1 + opt_.skin));
   if (new_plan) resize_slots(halo.all());
-  halo.exchange_state(y, layout_, m_, new_radius_);
+  halo.exchange_geometry(y + layout_.offset(Field::Position), m_.data(), new_radius_.data());
   for (std::size_t s = n_; s < n_all_; ++s) {
-    const std::size_t p = perm_[s];
-    for (int k = 0; k < D; ++k) x_[D * s + k] = halo.x[D * p + k];
-    ms_[s] = halo.m[p];
+    const std::size_t k = perm_[s] - n_;  // halo particle k
+    for (int c = 0; c < D; ++c) x_[D * s + c] = halo.x[D * k + c];
+    ms_[s] = halo.m[k];
   }
   // the serial rule (ensure_neighbours_and_density): rebuild when some h_i > (R_i - 2 disp) /
   // support, disp the largest displacement of any particle; here with a 1e-9 margin, so that
@@ -209,23 +203,29 @@ int SpmhdScheme<D, K>::distributed_density_attempt(Real t, const Real* y, int at
   if (built_ && !new_plan) v[0] = ns_.max_displacement_since_build(x_.data());
   for (std::size_t s = 0; s < n_; ++s) v[1] = std::max(v[1], K::support * h_[s] - radii_[s]);  // -slack
   halo.comm().allreduce(v, 3, ReduceOp::Max);
+  timer.reset();
   const Real disp = v[0];
   const bool rebuild = v[2] > 0 || 2 * disp >= -v[1] * (1 - 1e-9);
   int code = 0;
   DensityStats st;
   try {
     if (rebuild) {
+      ScopedPhase lists(Phase::Neighbours);
       code = build_neighbours(x_.data());
       for (std::size_t i = 0; i < n_; ++i) list_h_served_[i] = radii_[i] / K::support;
     } else {
       for (std::size_t i = 0; i < n_; ++i) list_h_served_[i] = (radii_[i] - 2 * disp) / K::support;
     }
-    if (code == 0 && solve) st = solve_density(x_.data());
+    if (code == 0 && solve) {
+      ScopedPhase density(Phase::DensityH);
+      st = solve_density(x_.data());
+    }
     if (code != 0) message = error_;
   } catch (...) {
     code = -1;
     message = current_exception_message("SpmhdScheme::rhs");
   }
+  timer.emplace(Phase::Halo);
   if ((code = halo.comm().agree(code, message)) != 0) return 1;
   std::int64_t counts[2] = {static_cast<std::int64_t>(st.outside_list), static_cast<std::int64_t>(st.not_converged)};
   halo.comm().allreduce(counts, 2, ReduceOp::Sum);
@@ -235,22 +235,35 @@ int SpmhdScheme<D, K>::distributed_density_attempt(Real t, const Real* y, int at
   return 1;  // recoverable: a smaller step moves the particles less
 }
 
+// Before a force pass (rhs): the halo's state fields, and h, rho, Omega when a solve or a
+// migration came since the last exchange; then what their records need besides (as prepare()
+// computes it for this rank's particles: the same inputs give the owner's values).
 template <int D, class K>
-void SpmhdScheme<D, K>::exchange_density() {
+void SpmhdScheme<D, K>::exchange_halo_fields(const Real* y) {
   spmhd_detail::Halo<D>& halo = *halo_;
-  for (std::size_t s = 0; s < n_; ++s) {
-    const std::size_t p = perm_[s];
-    halo.h[p] = h_[s];
-    halo.rho[p] = rho_[s];
-    halo.omega[p] = omega_[s];
+  {
+    ScopedPhase timer(Phase::Halo);
+    if (halo_density_stale_) {
+      local_density_.resize(3 * n_);
+      for (std::size_t s = 0; s < n_; ++s) {
+        Real* d = local_density_.data() + 3 * perm_[s];
+        d[0] = h_[s], d[1] = rho_[s], d[2] = omega_[s];
+      }
+    }
+    halo.exchange_fields(y, layout_, halo_density_stale_ ? &local_density_ : nullptr);
   }
-  halo.exchange_density();
+  const bool energy = layout_.has(Field::InternalEnergy), cleaning = layout_.has(Field::Psi);
   for (std::size_t s = n_; s < n_all_; ++s) {
-    const std::size_t p = perm_[s];
-    h_[s] = halo.h[p];
-    rho_[s] = halo.rho[p];
-    omega_[s] = halo.omega[p];
+    const std::size_t k = perm_[s] - n_;  // halo particle k
+    for (int c = 0; c < D; ++c) v_[D * s + c] = halo.v[D * k + c];
+    for (int c = 0; c < 3; ++c) B_[3 * s + c] = halo.B[3 * k + c];
+    if (energy) u_[s] = halo.u[k];
+    if (cleaning) psi_[s] = halo.psi[k];
+    if (halo_density_stale_) h_[s] = halo.density[3 * k], rho_[s] = halo.density[3 * k + 1], omega_[s] = halo.density[3 * k + 2];
   }
+  halo_density_stale_ = false;
+  equation_of_state(n_, n_all_);
+  set_cleaning_speeds(n_, n_all_);
 }
 
 #define SPHARK_SPMHD_DISTRIBUTED(D, K)                                                                 \
@@ -258,12 +271,11 @@ void SpmhdScheme<D, K>::exchange_density() {
   template void SpmhdScheme<D, K>::set_particles(std::vector<std::int64_t>, std::vector<Real>);       \
   template const std::vector<std::int64_t>& SpmhdScheme<D, K>::ids() const;                           \
   template const Communicator& SpmhdScheme<D, K>::communicator() const;                               \
-  template const Real* SpmhdScheme<D, K>::field_source(Field, const Real*) const;                     \
   template const std::uint32_t* SpmhdScheme<D, K>::slot_keys() const;                                 \
   template void SpmhdScheme<D, K>::resize_slots(std::size_t);                                          \
   template int SpmhdScheme<D, K>::distributed_prepare_positions(Real, const Real*);                   \
   template int SpmhdScheme<D, K>::distributed_density_attempt(Real, const Real*, int, std::string&);  \
-  template void SpmhdScheme<D, K>::exchange_density();                                                 \
+  template void SpmhdScheme<D, K>::exchange_halo_fields(const Real*);                                  \
   template std::vector<Real> SpmhdScheme<D, K>::migration_data() const;                               \
   template void SpmhdScheme<D, K>::restore_migrated(std::span<const Real>);
 #define SPHARK_SPMHD_DISTRIBUTED_2D_3D(K) SPHARK_SPMHD_DISTRIBUTED(2, K<2>) SPHARK_SPMHD_DISTRIBUTED(3, K<3>)

@@ -1,8 +1,6 @@
 #include "spmhd_halo.hpp"
 
-#include <limits>
-#include <stdexcept>
-#include <string>
+#include <span>
 
 namespace sphark::spmhd_detail {
 
@@ -30,39 +28,27 @@ bool Halo<D>::update_plan(const Real* xs, const std::vector<Real>& r, Real skin_
 }
 
 template <int D>
-void Halo<D>::exchange_state(const Real* y, const StateLayout& L, const std::vector<Real>& masses,
-                             const std::vector<Real>& r) {
-  const std::size_t n = local(), all = this->all();
-  auto load = [&](std::vector<Real>& to, const Real* from, int width) {
-    to.assign(from, from + width * n);
-    to.resize(width * all);
-  };
-  std::vector<typename HaloPlan<D>::Field> fields;
+void Halo<D>::exchange_geometry(const Real* xs, const Real* masses, const Real* r) {
+  x.resize(D * halo());
+  m.resize(halo());
+  radius.resize(halo());
+  fields_ = {{xs, x.data(), D}, {masses, m.data(), 1}, {r, radius.data(), 1}};
+  plan_.exchange(std::span<const typename HaloPlan<D>::SplitField>(fields_));
+}
+
+template <int D>
+void Halo<D>::exchange_fields(const Real* y, const StateLayout& L, const std::vector<Real>* local_density) {
+  fields_.clear();
   auto add = [&](std::vector<Real>& to, const Real* from, int width) {
-    load(to, from, width);
-    fields.push_back({to.data(), width});
+    to.resize(width * halo());
+    fields_.push_back({from, to.data(), width});
   };
-  add(x, y + L.offset(Field::Position), D);
   add(v, y + L.offset(Field::Velocity), D);
   if (L.has(Field::InternalEnergy)) add(u, y + L.offset(Field::InternalEnergy), 1);
   add(B, y + L.offset(Field::MagneticField), 3);
   if (L.has(Field::Psi)) add(psi, y + L.offset(Field::Psi), 1);
-  add(m, masses.data(), 1);
-  add(radius, r.data(), 1);
-  plan_.exchange(std::span<const typename HaloPlan<D>::Field>(fields));
-  h.resize(all);
-  rho.resize(all);
-  omega.resize(all);
-}
-
-template <int D>
-const Real* Halo<D>::field(Field f) const {
-  if (f == Field::Position) return x.data();
-  if (f == Field::Velocity) return v.data();
-  if (f == Field::InternalEnergy) return u.data();
-  if (f == Field::MagneticField) return B.data();
-  if (f == Field::Psi) return psi.data();
-  return nullptr;
+  if (local_density) add(density, local_density->data(), 3);
+  plan_.exchange(std::span<const typename HaloPlan<D>::SplitField>(fields_));
 }
 
 template class Halo<2>;

@@ -1,10 +1,13 @@
 #pragma once
 // The halo of a distributed SpmhdScheme (docs/scaling.md, "SPMHD"): the other ranks' particles
-// within reach of this rank's, in particle order (this rank's particles 0 .. local() - 1 as the
-// state holds them, then the halo in the plan's order). Per RHS: the state fields the pair
-// loops read (x, v, u, B, psi), the masses and the list radii a rebuild would use, in one
-// exchange; after the density solve h, rho and Omega (the records of spmhd_pair_row.hpp are
-// functions of these, computed by every rank for its halo as the owner does for its own).
+// within reach of this rank's. Halo particle k (the plan's order) is particle local() + k of the
+// scheme's particle numbering; the arrays below hold the halo's values only (this rank's are read
+// where they live: the state, the scheme's arrays). Two exchanges per RHS at most:
+//   geometry  (positions, masses, the list radii a rebuild would use) when the positions moved,
+//             before the neighbour lists and the density solve;
+//   fields    (v, u, B, psi of the state, and after a solve h, rho, Omega) before the force pass:
+//             the records of spmhd_pair_row.hpp are functions of these, computed by every rank
+//             for its halo as the owner computes them for its own particles.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -23,6 +26,7 @@ class Halo {
   void set_particles(std::vector<std::int64_t> ids);
   const std::vector<std::int64_t>& ids() const { return ids_; }
   std::size_t local() const { return ids_.size(); }
+  std::size_t halo() const { return plan_.halo(); }
   std::size_t all() const { return ids_.size() + plan_.halo(); }
   // Global ids of local + halo (the neighbour rows' sort keys).
   const std::vector<std::uint32_t>& keys() const { return keys_; }
@@ -32,18 +36,14 @@ class Halo {
   // particles). The skin: `skin_fraction` of the mean radius over every rank.
   bool update_plan(const Real* x, const std::vector<Real>& radius, Real skin_fraction);
 
-  // Collective: the state fields of y (this rank's, particle order), the masses and the list
-  // radii `radius` of the local particles into local + halo arrays.
-  void exchange_state(const Real* y, const StateLayout& L, const std::vector<Real>& masses,
-                      const std::vector<Real>& radius);
-  // Collective: h, rho, Omega (local entries filled by the caller) of the halo.
-  void exchange_density() { plan_.exchange({{h.data(), 1}, {rho.data(), 1}, {omega.data(), 1}}); }
+  // Collective: the halo's positions, masses and list radii (local values in particle order).
+  void exchange_geometry(const Real* x, const Real* masses, const Real* radius);
+  // Collective: the halo's state fields of y (this rank's, the scheme's layout) and, when
+  // `density` (particle order, h, rho, Omega of each local particle) is given, theirs.
+  void exchange_fields(const Real* y, const StateLayout& L, const std::vector<Real>* density);
 
-  // The particle-order values of a state field (local + halo), or nullptr if not exchanged.
-  const Real* field(Field f) const;
-
-  std::vector<Real> x, v, u, B, psi, m, radius;  // exchange_state
-  std::vector<Real> h, rho, omega;               // exchange_density (sized all())
+  std::vector<Real> x, m, radius;                // exchange_geometry
+  std::vector<Real> v, u, B, psi, density;       // exchange_fields (density: h, rho, Omega per particle)
 
  private:
   Communicator comm_;
@@ -51,6 +51,7 @@ class Halo {
   bool built_ = false;
   std::vector<std::int64_t> ids_;
   std::vector<std::uint32_t> keys_;
+  std::vector<typename HaloPlan<D>::SplitField> fields_;  // kept between exchanges
 };
 
 }  // namespace sphark::spmhd_detail

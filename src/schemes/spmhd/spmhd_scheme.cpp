@@ -222,6 +222,38 @@ void SpmhdScheme<D, K>::euler_potential_field(const Real* x, const Real* alpha) 
   }
 }
 
+// P, c and the fast speed of slots [begin, end) from rho, u (or the barotropic EOS) and B;
+// returns the largest fast speed.
+template <int D, class K>
+Real SpmhdScheme<D, K>::equation_of_state(std::size_t begin, std::size_t end) {
+  const Real* u = opt_.evolve_particles && !opt_.barotropic ? u_.data() : nullptr;
+  const BarotropicEos* eos = eos_ ? &*eos_ : nullptr;
+  Real cmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : cmax)
+  for (std::size_t a = begin; a < end; ++a) {
+    if (eos) {
+      P_[a] = eos->pressure(rho_[a]);
+      sound_speed_[a] = eos->sound_speed(rho_[a]);
+    } else {
+      P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
+      sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
+    }
+    const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
+    // fast magnetosonic speed (upper bound)
+    fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);
+    cmax = std::max(cmax, fast_speed_[a]);
+  }
+  return cmax;
+}
+
+// c_h of slots [begin, end): the global one, or each particle's own (local_ch).
+template <int D, class K>
+void SpmhdScheme<D, K>::set_cleaning_speeds(std::size_t begin, std::size_t end) {
+  for (std::size_t a = begin; a < end; ++a)
+    cleaning_speeds_[a] =
+        opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
+}
+
 template <int D, class K>
 int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
   ++version_;
@@ -249,42 +281,28 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
   } else if (!built_) {
     if (const int rc = ensure_neighbours_and_density(t, x)) return rc;
   }
-  // the other fields of every slot: the state's, or local + halo when distributed
-  auto source = [&](Field f) { return field_source(f, y); };
+  // the other fields of this rank's particles (distributed: the halo's follow before the force
+  // pass, exchange_halo_fields; serially every particle is this rank's)
+  auto field = [&](Field f) { return y + layout_.offset(f); };
   if (opt_.evolve_particles) {
-    gather(source(Field::Velocity), D, v_, n_all_);
-    if (!opt_.barotropic) gather(source(Field::InternalEnergy), 1, u_, n_all_);
+    gather(field(Field::Velocity), D, v_, n_);
+    if (!opt_.barotropic) gather(field(Field::InternalEnergy), 1, u_, n_);
   }
-  if (!psi_.empty()) gather(source(Field::Psi), 1, psi_, n_all_);
+  if (!psi_.empty()) gather(field(Field::Psi), 1, psi_, n_);
   if (opt_.field == FieldRepresentation::MagneticField) {
-    gather(source(Field::MagneticField), 3, B_, n_all_);
+    gather(field(Field::MagneticField), 3, B_, n_);
   } else {
     ScopedPhase timer(Phase::Forces);
-    gather(source(Field::EulerAlpha), 1, alpha_, n_);
+    gather(field(Field::EulerAlpha), 1, alpha_, n_);
     euler_potential_field(x, alpha_.data());
   }
-  const Real* u = opt_.evolve_particles && !opt_.barotropic ? u_.data() : nullptr;
-  const BarotropicEos* eos = eos_ ? &*eos_ : nullptr;
-  Real cmax = 0;
-#pragma omp parallel for schedule(static) reduction(max : cmax)
-  for (std::size_t a = 0; a < n_all_; ++a) {  // the halo's too: its records (pair_loop_arrays)
-    if (eos) {
-      P_[a] = eos->pressure(rho_[a]);
-      sound_speed_[a] = eos->sound_speed(rho_[a]);
-    } else {
-      P_[a] = u ? (opt_.gamma - 1) * rho_[a] * u[a] : 0;
-      sound_speed_[a] = std::sqrt(opt_.gamma * P_[a] / rho_[a]);
-    }
-    const Real b2 = B_[3 * a] * B_[3 * a] + B_[3 * a + 1] * B_[3 * a + 1] + B_[3 * a + 2] * B_[3 * a + 2];
-    // fast magnetosonic speed (upper bound)
-    fast_speed_[a] = std::sqrt(sound_speed_[a] * sound_speed_[a] + b2 / rho_[a]);
-    cmax = std::max(cmax, fast_speed_[a]);
+  Real cmax = equation_of_state(0, n_);
+  if (halo_) {  // the global c_h
+    ScopedPhase timer(Phase::Halo);
+    cmax = halo_->comm().allreduce(cmax, ReduceOp::Max);
   }
-  if (halo_) cmax = halo_->comm().allreduce(cmax, ReduceOp::Max);  // the global c_h
   cleaning_speed_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
-  for (std::size_t a = 0; a < n_all_; ++a)
-    cleaning_speeds_[a] =
-        opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
+  set_cleaning_speeds(0, n_);
   if (!std::isfinite(cleaning_speed_)) {
     error_ = "non-finite wave speed";
     return 1;
@@ -297,6 +315,7 @@ int SpmhdScheme<D, K>::rhs(Real t, const Real* y, Real* ydot) {  // may throw: t
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
   if (const int rc = prepare(t, y); rc != 0) return rc;
+  if (halo_) exchange_halo_fields(y);  // collective: the halo's records' inputs
   force_pass(y, ydot);
   if (opt_.self_gravity) gravity_pass(ydot);
   if (opt_.sink_particles) sink_pass(y, ydot);

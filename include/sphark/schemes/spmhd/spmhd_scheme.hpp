@@ -235,8 +235,13 @@ class SpmhdScheme final : public OdeSystem {
   int distributed_prepare_positions(Real t, const Real* y);   // collective: halo, lists, density
   int distributed_density_attempt(Real t, const Real* y, int attempt, std::string& message);
   void resize_slots(std::size_t all);                          // n_all_ after a new halo plan
-  void exchange_density();                                     // collective: h, rho, Omega of the halo
-  const Real* field_source(Field f, const Real* y) const;      // particle-order values of f (local + halo)
+  // Collective, before a force pass: the halo's v, u, B, psi (and h, rho, Omega after a solve),
+  // then their P, c, fast speeds and c_h.
+  void exchange_halo_fields(const Real* y);
+  bool halo_density_stale_ = false;                            // a solve since the last exchange
+  std::vector<Real> local_density_;                            // h, rho, Omega per particle (exchange)
+  Real equation_of_state(std::size_t begin, std::size_t end);  // P, c, c_f of slots; the largest c_f
+  void set_cleaning_speeds(std::size_t begin, std::size_t end);
   const std::uint32_t* slot_keys() const;                      // rows' sort keys: global ids per slot
   // h_ from the bounding box of every rank's positions x (collective when distributed), on
   // this rank if `apply`
