@@ -52,6 +52,21 @@ std::size_t DistributedParticles<D>::migrate(Payload& p, bool repartition) {
   return sphark::migrate(comm_, owner, data).sent;
 }
 
+template <int D>
+std::size_t DistributedParticles<D>::migrate(Payload& p, bool repartition, std::vector<Real>& data, int per_particle,
+                                             std::size_t tail) {
+  const std::size_t n = ids_.size();
+  if (data.size() != per_particle * n + tail)
+    throw std::invalid_argument("DistributedParticles::migrate: the scheme's data does not fit the particles");
+  const std::vector<Real> tail_values(data.end() - static_cast<std::ptrdiff_t>(tail), data.end());
+  data.resize(per_particle * n);
+  p.arrays.push_back({&data, per_particle});
+  const std::size_t sent = migrate(p, repartition);
+  p.arrays.pop_back();
+  data.insert(data.end(), tail_values.begin(), tail_values.end());
+  return sent;
+}
+
 template class DistributedParticles<2>;
 template class DistributedParticles<3>;
 

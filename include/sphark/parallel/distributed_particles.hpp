@@ -44,6 +44,9 @@ class DistributedParticles {
   // first when `repartition`). ids() then holds this rank's new particles. Returns the
   // particles this rank sent.
   std::size_t migrate(Payload& p, bool repartition);
+  // The same with a scheme's data (`data`: `per_particle` values per particle, particle-major,
+  // then `tail` values alike on every rank), which then holds the new particles' (and the tail).
+  std::size_t migrate(Payload& p, bool repartition, std::vector<Real>& data, int per_particle, std::size_t tail);
 
  private:
   void own_domain_of(const Real* x);  // every particle's positions: domains_ and ids_

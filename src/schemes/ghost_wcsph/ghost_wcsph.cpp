@@ -11,6 +11,7 @@
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/operators/tait_eos.hpp"
 #include "sphark/schemes/ghost_wcsph/ghost_wcsph.hpp"
+#include "ghost_halo.hpp"
 
 namespace sphark {
 
@@ -59,6 +60,9 @@ GhostWcsph<K>::GhostWcsph(std::size_t particles, GhostWcsphParams params, Wall<2
 }
 
 template <class K>
+GhostWcsph<K>::~GhostWcsph() = default;
+
+template <class K>
 Real GhostWcsph<K>::min_ghost_h() const {
   Real m = kInfinity;
   for (std::size_t g = 0; g < ghosts_.size(); ++g) m = std::min(m, ghost_h_[g]);
@@ -101,6 +105,7 @@ int GhostWcsph<K>::solve_densities(std::size_t total) {
 // The state is finite (the stepper's guard checks it before every call).
 template <class K>
 int GhostWcsph<K>::prepare(const Real* y) {
+  if (halo_) return distributed_prepare(y, true);  // collective (ghost_wcsph_distributed.cpp)
   {
     const Real* x = y + layout_.offset(Field::Position);
     const Real* v = y + layout_.offset(Field::Velocity);
@@ -131,17 +136,23 @@ int GhostWcsph<K>::prepare(const Real* y) {
       ghosts_.gather_scalar(h_.data(), h_.data() + n_);
       ghosts_.gather_scalar(omega_.data(), omega_.data() + n_);
       h_min_ = *std::min_element(h_.begin(), h_.begin() + n_);
-      const Real p_b = background_pressure(p_);
-      for (std::size_t i = 0; i < total; ++i) {
-        pressure_[i] = tait_pressure(rho_[i], p_.rho0, p_.sound_speed) + p_b;  // seed 000, eq. (26)
-        q_[i] = pressure_[i] / (omega_[i] * rho_[i] * rho_[i]);
-      }
+      pressures(total);
       std::copy(x, x + 2 * n_, x_prepared_.begin());
       prepared_ = true;
       return 0;
     }
     error_ = "ghost layer width did not settle";
     return 1;
+  }
+}
+
+// P (seed 000, eq. (26): Tait plus the background) and P / (Omega rho^2) of slots 0 .. total - 1.
+template <class K>
+void GhostWcsph<K>::pressures(std::size_t total) {
+  const Real p_b = background_pressure(p_);
+  for (std::size_t i = 0; i < total; ++i) {
+    pressure_[i] = tait_pressure(rho_[i], p_.rho0, p_.sound_speed) + p_b;
+    q_[i] = pressure_[i] / (omega_[i] * rho_[i] * rho_[i]);
   }
 }
 
@@ -156,6 +167,7 @@ void GhostWcsph<K>::resume(std::span<const Real> h) {
 
 template <class K>
 int GhostWcsph<K>::prepare_if_moved(const Real* y) {
+  if (halo_) return prepare_if_moved_distributed(y);  // collective
   const Real* x = y + layout_.offset(Field::Position);
   if (prepared_ && std::memcmp(x, x_prepared_.data(), 2 * n_ * sizeof(Real)) == 0) return 0;
   return prepare(y);
@@ -193,7 +205,7 @@ int GhostWcsph<K>::rhs(Real /*t*/, const Real* y, Real* ydot) {
                                            Vec<2>(0.5 * (ga + gb)));
       }
       acc += term;
-      if (b >= n_) wall += term;
+      if (is_ghost(b)) wall += term;
     }
     if (p_.tau > 0) acc[0] += (p_.v0 - va[0]) / p_.tau;  // seed 004, eq. (36)
     dx[2 * a] = va[0];
@@ -214,7 +226,9 @@ int GhostWcsph<K>::rhs(Real /*t*/, const Real* y, Real* ydot) {
 template <class K>
 Real GhostWcsph<K>::max_acceleration(Real t, const Real* y, const Real* ydot) {
   if (!ydot) {
-    if (evaluated_y_.size() != layout_.size() || !std::equal(y, y + layout_.size(), evaluated_y_.begin())) {
+    bool same = evaluated_y_.size() == layout_.size() && std::equal(y, y + layout_.size(), evaluated_y_.begin());
+    if (halo_) same = communicator().allreduce(std::int64_t(same ? 1 : 0), ReduceOp::Min) == 1;  // every rank evaluates
+    if (!same) {
       scratch_.resize(layout_.size());
       if (rhs(t, y, scratch_.data()) != 0) return kNaN;
     }
@@ -229,15 +243,23 @@ Real GhostWcsph<K>::max_acceleration(Real t, const Real* y, const Real* ydot) {
 template <class K>
 Real GhostWcsph<K>::max_stable_dt(Real t, const Real* y, const Real* ydot) {
   const Real accel = max_acceleration(t, y, ydot);  // (before the prepare of y: rhs() prepares too)
-  if (std::isnan(accel) || prepare_if_moved(y) != 0) return kNaN;
+  if (!halo_ && std::isnan(accel)) return kNaN;
+  if (prepare_if_moved(y) != 0) return kNaN;  // (distributed: collective, every rank the same code)
   const Real* v = y + layout_.offset(Field::Velocity);
   Real vmax2 = 0, rho_max = 0;
   for (std::size_t a = 0; a < n_; ++a) vmax2 = std::max(vmax2, v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
   for (std::size_t i = 0; i < n_ + ghosts_.size(); ++i) rho_max = std::max(rho_max, rho_[i]);
+  Real accel_max = accel;
+  if (halo_) {  // the serial step from every rank's maxima (h_min_ is every rank's already)
+    Real maxima[4] = {vmax2, rho_max, std::isnan(accel) ? 0 : accel, std::isnan(accel) ? Real(1) : Real(0)};
+    communicator().allreduce(maxima, 4, ReduceOp::Max);
+    if (maxima[3] > 0) return kNaN;
+    vmax2 = maxima[0], rho_max = maxima[1], accel_max = maxima[2];
+  }
   const Real c = tait_sound_speed(rho_max, p_.rho0, p_.sound_speed);
   // Courant condition with the viscous signal speed (Monaghan 1992) and the force condition.
   Real dt = p_.cfl * h_min_ / (c + std::sqrt(vmax2) + 1.2 * p_.alpha * c);
-  if (accel > 0) dt = std::min(dt, p_.cfl * std::sqrt(h_min_ / accel));
+  if (accel_max > 0) dt = std::min(dt, p_.cfl * std::sqrt(h_min_ / accel_max));
   return dt;
 }
 

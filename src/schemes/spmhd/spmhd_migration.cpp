@@ -10,22 +10,16 @@ namespace sphark {
 template <int D, class K>
 std::size_t migrate_spmhd(DistributedParticles<D>& parts, SpmhdScheme<D, K>& scheme, std::vector<Real>& y,
                           std::vector<Real>* carried, bool repartition) {
-  const std::size_t n = scheme.particles();
   if (parts.ids() != scheme.ids()) throw std::logic_error("migrate_spmhd: the scheme holds other particles");
-  constexpr int W = SpmhdScheme<D, K>::kMigrationValues;
-  std::vector<Real> solve_state = scheme.migration_data();  // W per particle, then two values alike on every rank
-  const std::vector<Real> tail(solve_state.end() - 2, solve_state.end());
-  solve_state.resize(W * n);
+  std::vector<Real> solve_state = scheme.migration_data();  // per particle, then two values alike on every rank
   std::vector<Real> masses = scheme.masses();
   typename DistributedParticles<D>::Payload p;
   p.y = &y;
   p.components = field_components(scheme.layout());
   p.masses = &masses;
-  p.arrays = {{&solve_state, W}};
   if (carried) p.aligned_states = {carried};
-  const std::size_t sent = parts.migrate(p, repartition);
+  const std::size_t sent = parts.migrate(p, repartition, solve_state, SpmhdScheme<D, K>::kMigrationValues, 2);
   scheme.set_particles(parts.ids(), std::move(masses));
-  solve_state.insert(solve_state.end(), tail.begin(), tail.end());
   scheme.restore_migrated(solve_state);
   return sent;
 }

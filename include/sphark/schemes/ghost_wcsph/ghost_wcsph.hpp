@@ -21,12 +21,15 @@
 //   g_0 = min_a (-s_a)                             penetration: a particle crosses the wall
 //   g_1 = min_ghost h_g / h_ref - accumulation      accumulation: a ghost's support collapses
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "sphark/boundaries/ghosts.hpp"
 #include "sphark/integrate/ode_system.hpp"
 #include "sphark/neighbours/neighbour_search.hpp"
+#include "sphark/parallel/communicator.hpp"
 #include "sphark/state/state_layout.hpp"
 
 namespace sphark {
@@ -53,12 +56,39 @@ inline Real background_pressure(const GhostWcsphParams& p) {
   return p.background * p.sound_speed * p.sound_speed * p.rho0 / 7;
 }
 
+namespace ghost_detail {
+struct Halo;  // src/schemes/ghost_wcsph/ghost_wcsph_distributed.cpp
+}
+
 template <class K>
 class GhostWcsph : public OdeSystem {
  public:
   // `box` bounds the particles (periodic along its periodic axes); the fluid lies on the
   // s < 0 side of `wall`. Throws std::invalid_argument for bad parameters.
   GhostWcsph(std::size_t particles, GhostWcsphParams params, Wall<2> wall, PeriodicBox<2> box);
+  ~GhostWcsph() override;
+
+  // Distributed runs (src/schemes/ghost_wcsph/ghost_wcsph_distributed.cpp; docs/scaling.md,
+  // "The lattice"): this rank holds the particles `ids` of the scheme built with every particle
+  // (particle k = global id k). Every evaluation is then collective: a halo of the other ranks'
+  // particles within reach (the list radius plus twice the ghost layer: their ghosts too, which
+  // every rank places itself from their positions), the density solve of this rank's particles
+  // and ghosts with every decision (list radius, retries, the layer's width) taken from the
+  // maxima over all ranks, then h, rho and Omega of the halo from their owners. Rows are summed
+  // in the serial order (keys: a particle's global id; a ghost's, N + its source's), so a
+  // distributed run equals the serial one bit for bit.
+  void distribute(Communicator comm, const std::vector<std::int64_t>& ids);
+  // Collective, between steps (a migration): this rank now holds `ids`; restore_migrated() with
+  // their migration_data() then, so that the run goes on as the serial one.
+  void set_particles(std::vector<std::int64_t> ids);
+  bool distributed() const { return halo_ != nullptr; }
+  const std::vector<std::int64_t>& ids() const;
+  const Communicator& communicator() const;
+  // Per particle (particle-major): h, rho, Omega, the own h of its ghost (NaN: none) and the
+  // positions they were solved at; then whether they are solved.
+  static constexpr int kMigrationValues = 6;
+  std::vector<Real> migration_data() const;
+  void restore_migrated(std::span<const Real> data);
 
   const StateLayout& layout() const { return layout_; }
   const GhostWcsphParams& scheme_params() const { return p_; }
@@ -104,6 +134,20 @@ class GhostWcsph : public OdeSystem {
 
  private:
   int solve_densities(std::size_t total);
+  void pressures(std::size_t total);  // P and P / (Omega rho^2) of every slot
+  // Distributed (ghost_wcsph_distributed.cpp): the collective prepare, its solve with the halo,
+  // the halo and lists for the solved h (after a migration), and what both finish with.
+  int distributed_prepare(const Real* y, bool solve);
+  int distributed_solve(const Real* x, const Real* v, Real width, std::string& message);
+  void link_halo(const Real* x, const Real* v, Real width, Real r_build);
+  void finish_distributed_prepare(const Real* x);
+  bool is_ghost(std::size_t i) const { return i >= n_ && (i < n_ + ghosts_.size() || i >= halo_ghost_begin_); }
+  int prepare_if_moved_distributed(const Real* y);
+  std::unique_ptr<ghost_detail::Halo> halo_;
+  std::size_t halo_ghost_begin_ = static_cast<std::size_t>(-1);  // distributed: first halo ghost (serial: none)
+  bool relink_ = false;  // distributed: solved values restored after a migration, halo and lists not built
+  Real r_build_ = 0;     // distributed: the list radius of the last solve
+  Real width_used_ = 0;  // distributed: the ghost layer's width of the last solve
   int place_ghosts_and_densities(const Real* x, const Real* v);
   Real max_acceleration(Real t, const Real* y, const Real* ydot);
 
