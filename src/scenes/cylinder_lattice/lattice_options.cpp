@@ -43,6 +43,8 @@ void CylinderLatticeScene::check_options(const OptionParser& op, CoreOptions& co
   if (case_ == "ensemble" && (control.checkpoint_every > 0 || restarting || control.inject_nan_at > 0))
     op.fail(control.checkpoint_every > 0 ? "--checkpoint-every" : restarting ? "--restart" : "--inject-nan-at",
             "not available with --case ensemble (many short runs; SIGINT keeps the runs done in ensemble.csv)");
+  if (case_ == "ensemble" && world().distributed())
+    op.fail("--case", "ensemble does not run distributed (many small serial runs); single and medium do");
   if (map_ == "default") map_ = case_ == "single" ? "nonlinear" : "both";
   if (core.stepper == "ark-imex") op.fail("--stepper", "ark-imex: the lattice system has no stiff part (use an ERK table or leapfrog)");
   if (cfl_ > 0 && cfl_ < 1e-3) op.fail("--cfl", std::to_string(cfl_) + " is below 1e-3 (0: the case's default)");

@@ -10,6 +10,9 @@
 #include "ensemble_case.hpp"
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
+#include "sphark/parallel/distributed_particles.hpp"
+#include "sphark/parallel/global_state.hpp"
+#include "sphark/schemes/ghost_wcsph/ghost_migration.hpp"
 #include "sphark/run/run_outputs.hpp"
 
 namespace sphark {
@@ -24,16 +27,14 @@ double process_cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-// Particle fields of state y as CSV text (for the Fig. 9 interpolation in vis/cylinder_lattice.py);
-// x = the positions wrapped into the box.
-std::string fields_csv(const LatticeSystem& sys, const Real* y, const std::vector<Real>& x) {
+// Particle fields as CSV text (for the Fig. 9 interpolation in vis/cylinder_lattice.py): x the
+// positions wrapped into the box, v, rho, h of n particles (2, 2, 1, 1 values each).
+std::string fields_csv(const Real* x, const Real* v, const Real* rho, const Real* h, std::size_t n) {
   std::ostringstream os;
   os.precision(10);
   os << "x,y,vx,vy,rho,h\n";
-  const Real* v = y + sys.velocity_offset();
-  for (std::size_t a = 0; a < sys.particles(); ++a)
-    os << x[2 * a] << ',' << x[2 * a + 1] << ',' << v[2 * a] << ',' << v[2 * a + 1] << ',' << sys.density()[a] << ','
-       << sys.smoothing_length()[a] << '\n';
+  for (std::size_t a = 0; a < n; ++a)
+    os << x[2 * a] << ',' << x[2 * a + 1] << ',' << v[2 * a] << ',' << v[2 * a + 1] << ',' << rho[a] << ',' << h[a] << '\n';
   return os.str();
 }
 
@@ -55,18 +56,25 @@ std::string ghost_frames(const std::string& lattice_frames, const std::filesyste
 // CSV. The penetration / accumulation roots (seed 004, eq. 37) end the run at their root time.
 class LatticeRun final : public SceneRun {
  public:
-  LatticeRun(const LatticeRunConfig& cfg) : cfg_(cfg), sys_(cfg.particles, lattice_params(cfg.params, cfg.particles)) {
+  // A world with MPI: a distributed run (RCB domains, migration every kMigrateEvery steps, the
+  // domains recomputed every kRepartitionEvery; docs/scaling.md, "The lattice").
+  LatticeRun(const LatticeRunConfig& cfg, Communicator world = {})
+      : cfg_(cfg), sys_(cfg.particles, lattice_params(cfg.params, cfg.particles)), world_(std::move(world)) {
     cpu0_ = process_cpu_seconds();
+    if (!world_.distributed()) return;
+    const std::vector<Real> y_all = whole_initial_state();
+    parts_.emplace(world_, y_all.data() + sys_.position_offset(), sys_.particles(), lattice_box(sys_.params()));
+    y_ = share_of(sys_.layout(), y_all, parts_->ids());
+    sys_.distribute(world_, parts_->ids());
   }
   OdeSystem& system() override { return sys_; }
   const StateLayout& layout() const override { return sys_.layout(); }
-  std::vector<Real> initial_state() override {
-    std::vector<Real> y(sys_.size(), 0.0);  // at rest
-    const std::vector<Real> x0 = initial_positions(cfg_);
-    std::copy(x0.begin(), x0.end(), y.begin() + static_cast<std::ptrdiff_t>(sys_.position_offset()));
-    return y;
+  std::vector<Real> initial_state() override { return parts_ ? y_ : whole_initial_state(); }
+  StepperOptions stepper(const CoreOptions&, std::string_view) override {
+    StepperOptions o = cfg_.stepper;
+    o.communicator = world_;
+    return o;
   }
-  StepperOptions stepper(const CoreOptions&, std::string_view) override { return cfg_.stepper; }
   std::vector<std::string> columns() const override {
     return {"t", "kinetic_energy", "min_ghost_h_over_h_ref", "wall_force_x", "wall_force_y", "steps", "rhs_evals"};
   }
@@ -83,20 +91,37 @@ class LatticeRun final : public SceneRun {
     s.progress_interval = 10;
     frame_every_ = s.frame_every;
     dir_ = s.frames_dir;
+    if (parts_) return;  // distributed: no ghost series (each rank's ghosts; the particles' frames are parallel)
     ghosts_.emplace(dir_, "ghosts");  // frame k of the ghosts goes with lattice_k
     if (s.restart) ghosts_->restore(ghost_frames(s.restart->text("frames"), dir_));
   }
+  bool changes_particles() const override { return parts_.has_value(); }
+  std::optional<TimeLoopHooks::Resize> after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) override;
+  static constexpr long kMigrateEvery = 20, kRepartitionEvery = 100;
+  std::vector<std::int64_t> global_ids() const override { return parts_ ? parts_->ids() : SceneRun::global_ids(); }
+  std::vector<std::int64_t> take_share(const Checkpoint& c) override;
   LatticeRunResult result(const TimeLoopResult& loop) const;
 
  private:
+  std::vector<Real> whole_initial_state() const {
+    std::vector<Real> y(sys_.layout().with_count(Species::Gas, cfg_.particles).size(), 0.0);  // at rest
+    const std::vector<Real> x0 = initial_positions(cfg_);
+    std::copy(x0.begin(), x0.end(), y.begin() + static_cast<std::ptrdiff_t>(sys_.position_offset()));
+    return y;
+  }
   bool event(const Real* g) {
     if (g[0] <= 0) reason_ = "penetration";
     else if (g[1] <= 0) reason_ = "accumulation";
     return !reason_.empty();
   }
+  void write_fields(Real t, const Real* y);  // fields_NNNN.csv (distributed: gathered on rank 0)
 
   LatticeRunConfig cfg_;
   LatticeSystem sys_;
+  Communicator world_;
+  std::optional<DistributedParticles<2>> parts_;  // distributed runs
+  std::vector<Real> y_;                           // distributed: this rank's initial state
+  long steps_ = 0;  // distributed: steps since t = 0 (the migration schedule; a restart: the checkpoint's)
   std::optional<ResumableVtkSeries> ghosts_;
   std::filesystem::path dir_;
   Real frame_every_ = 0, sampled_g_[2] = {1, 1};
@@ -107,35 +132,67 @@ class LatticeRun final : public SceneRun {
 
 std::vector<Real> LatticeRun::diagnostics(Real t, const Real* y, const StepperStats& st) {
   const LatticeParams& p = sys_.params();
-  const int rc = sys_.prepare(y);  // density, h, ghosts of this state
+  const int rc = sys_.prepare(y);  // density, h, ghosts of this state (distributed: collective, agreed)
   if (rc != 0 || sys_.roots(t, y, sampled_g_) != 0) sampled_g_[0] = sampled_g_[1] = 1;
   Real ke = 0;
   const Real* v = y + sys_.velocity_offset();
   for (std::size_t i = 0; i < 2 * sys_.particles(); ++i) ke += 0.5 * p.mass * v[i] * v[i];
-  const Vec<2> f = rc == 0 ? sys_.wall_force() : Vec<2>(NAN, NAN);
-  return {t, ke, rc == 0 ? sys_.min_ghost_h() / p.h_ref : NAN, f[0], f[1], static_cast<Real>(st.steps),
+  Vec<2> f = rc == 0 ? sys_.wall_force() : Vec<2>(NAN, NAN);
+  Real min_h = rc == 0 ? sys_.min_ghost_h() : NAN;
+  if (parts_) {  // every rank's: sums, and minima (the events' functions too)
+    Real sums[3] = {ke, f[0], f[1]};
+    world_.allreduce(sums, 3, ReduceOp::Sum);
+    ke = sums[0], f = Vec<2>(sums[1], sums[2]);
+    Real minima[3] = {sampled_g_[0], sampled_g_[1], min_h};
+    world_.allreduce(minima, 3, ReduceOp::Min);
+    sampled_g_[0] = minima[0], sampled_g_[1] = minima[1], min_h = minima[2];
+  }
+  return {t, ke, rc == 0 ? min_h / p.h_ref : NAN, f[0], f[1], static_cast<Real>(st.steps),
           static_cast<Real>(st.rhs_evals)};
 }
 
-ParticleFrame LatticeRun::frame(Real t, const Real* y) {
-  if (sys_.prepare_if_moved(y) != 0) throw std::runtime_error("lattice frame at t=" + std::to_string(t) + ": " + sys_.last_error());
-  ParticleFrame g;
-  g.dim = 2;
-  g.count = sys_.ghost_count();
-  g.positions = sys_.all_positions().data() + 2 * sys_.particles();
-  g.arrays = {{"velocity", sys_.ghosts().velocities(), 2},
-              {"density", sys_.density().data() + sys_.particles(), 1},
-              {"h", sys_.smoothing_length().data() + sys_.particles(), 1}};
-  if (g.count > 0) ghosts_->write(g, t);
+void LatticeRun::write_fields(Real t, const Real* y) {
   char name[64];  // fields_NNNN.csv on the frame grid, fields_end.csv at an event or a failure
   const Real k = std::round(t / frame_every_);
   if (std::abs(t - k * frame_every_) <= 1e-9 * frame_every_)
     std::snprintf(name, sizeof name, "fields_%04ld.csv", static_cast<long>(k));
   else
     std::snprintf(name, sizeof name, "fields_end.csv");
+  const std::size_t n = sys_.particles();
+  const Real* v = y + sys_.velocity_offset();
+  if (!parts_) {
+    write_file_atomically(dir_ / name, "# t=" + std::to_string(t) + "\n" +
+                                           fields_csv(wrapped_.data(), v, sys_.density().data(), sys_.smoothing_length().data(), n));
+    return;
+  }
+  std::vector<Real> local(wrapped_.begin(), wrapped_.begin() + static_cast<std::ptrdiff_t>(2 * n));  // field-major
+  local.insert(local.end(), v, v + 2 * n);
+  local.insert(local.end(), sys_.density().begin(), sys_.density().begin() + static_cast<std::ptrdiff_t>(n));
+  local.insert(local.end(), sys_.smoothing_length().begin(), sys_.smoothing_length().begin() + static_cast<std::ptrdiff_t>(n));
+  const std::vector<Real> all = gather_particles(world_, parts_->ids(), local, {2, 2, 1, 1});
+  const std::size_t N = parts_->global_particles();
+  world_.collectively([&] {
+    if (world_.rank() == 0)
+      write_file_atomically(dir_ / name, "# t=" + std::to_string(t) + "\n" +
+                                             fields_csv(all.data(), all.data() + 2 * N, all.data() + 4 * N, all.data() + 5 * N, N));
+  });
+}
+
+ParticleFrame LatticeRun::frame(Real t, const Real* y) {
+  if (sys_.prepare_if_moved(y) != 0) throw std::runtime_error("lattice frame at t=" + std::to_string(t) + ": " + sys_.last_error());
+  if (ghosts_) {
+    ParticleFrame g;
+    g.dim = 2;
+    g.count = sys_.ghost_count();
+    g.positions = sys_.all_positions().data() + 2 * sys_.particles();
+    g.arrays = {{"velocity", sys_.ghosts().velocities(), 2},
+                {"density", sys_.density().data() + sys_.particles(), 1},
+                {"h", sys_.smoothing_length().data() + sys_.particles(), 1}};
+    if (g.count > 0) ghosts_->write(g, t);
+  }
   wrapped_.resize(2 * sys_.particles());
   lattice_box(sys_.params()).wrap_all(y + sys_.position_offset(), sys_.particles(), wrapped_.data());
-  write_file_atomically(dir_ / name, "# t=" + std::to_string(t) + "\n" + fields_csv(sys_, y, wrapped_));
+  write_fields(t, y);
   ParticleFrame f;
   f.dim = 2;
   f.count = sys_.particles();
@@ -144,7 +201,33 @@ ParticleFrame LatticeRun::frame(Real t, const Real* y) {
               {"density", sys_.density().data(), 1},
               {"h", sys_.smoothing_length().data(), 1},
               {"pressure", sys_.pressure().data(), 1}};
+  if (parts_) f.ids = parts_->ids().data();  // parallel VTK: each particle's global id
   return f;
+}
+
+// This rank's particles to their owners every kMigrateEvery steps (the leapfrog's derivative
+// along); the loop continues from the new state.
+std::optional<TimeLoopHooks::Resize> LatticeRun::after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) {
+  if (!parts_) return std::nullopt;
+  const long steps = ++steps_;
+  if (steps % kMigrateEvery != 0) return std::nullopt;
+  std::vector<Real> state(y, y + layout().size()), kick = carried();
+  const bool with_kick = world_.allreduce(std::int64_t(kick.empty() ? 0 : 1), ReduceOp::Max) == 1;
+  migrate_ghost_wcsph(*parts_, sys_, state, with_kick ? &kick : nullptr, steps % kRepartitionEvery == 0);
+  TimeLoopHooks::Resize r{layout(), std::move(state), {}, {}, std::nullopt};
+  if (with_kick) r.carried = std::move(kick);
+  return r;
+}
+
+std::vector<std::int64_t> LatticeRun::take_share(const Checkpoint& c) {
+  if (!parts_) return SceneRun::take_share(c);
+  steps_ = static_cast<long>(c.scalar("steps"));  // the migration schedule continues
+  const StateLayout whole = layout().with_count(Species::Gas, parts_->global_particles());
+  if (c.y.size() != whole.size()) throw std::invalid_argument("--restart: the checkpoint holds another lattice");
+  const std::vector<std::int64_t>& ids = parts_->take_share(c.y.data() + whole.offset(Field::Position));
+  sys_.set_particles(ids);
+  y_ = share_of(whole, c.y, ids);
+  return ids;
 }
 
 LatticeRunResult LatticeRun::result(const TimeLoopResult& loop) const {
@@ -197,7 +280,7 @@ void CylinderLatticeScene::check_restart_run(const OptionParser& p, const std::s
 std::unique_ptr<SceneRun> CylinderLatticeScene::make_run(const std::string& map, const CoreOptions&) {
   LatticeRunConfig cfg = run_;
   cfg.params.map = parse_map(map);
-  return std::make_unique<LatticeRun>(cfg);
+  return std::make_unique<LatticeRun>(cfg, world());
 }
 
 // The same run with fewer particles and no relaxation (it moves them, it does not add memory).
@@ -219,7 +302,7 @@ void CylinderLatticeScene::finished(const std::string& map, SceneRun& r, const T
 }
 
 int CylinderLatticeScene::report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) {
-  if (outcomes_.empty()) return 0;
+  if (outcomes_.empty() || world().rank() != 0) return 0;  // distributed: rank 0 reports
   if (case_ == "single") {
     write_file_atomically(core.out / subdirectory(runs.front()) / "summary.csv", summary_csv(outcomes_));
     return 0;

@@ -34,6 +34,8 @@ class CylinderLatticeScene final : public Scene {
   void finished(const std::string& map, SceneRun& r, const TimeLoopResult& result) override;
   int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
   std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& runs_done) const override;
+  // Under mpirun: single and medium (the ensemble's many small runs are serial only).
+  bool supports_distributed_runs() const override { return true; }
 
   struct Outcome {
     std::string map;

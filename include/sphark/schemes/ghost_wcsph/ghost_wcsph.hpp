@@ -112,6 +112,7 @@ class GhostWcsph : public OdeSystem {
   // source's h and are solved again.)
   std::vector<Real> resume_data() const override { return {h_.begin(), h_.begin() + static_cast<std::ptrdiff_t>(n_)}; }
   void resume(std::span<const Real> h) override;
+  ResumeShape resume_shape() const override { return {1, 0}; }  // h per particle
 
   // Ghosts, densities and h of state y (what rhs() does before the forces); 0 ok, else error.
   int prepare(const Real* y);
