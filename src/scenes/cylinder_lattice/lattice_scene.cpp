@@ -13,6 +13,7 @@
 #include "sphark/parallel/distributed_particles.hpp"
 #include "sphark/parallel/global_state.hpp"
 #include "sphark/schemes/ghost_wcsph/ghost_migration.hpp"
+#include "sphark/run/migration_step.hpp"
 #include "sphark/run/run_outputs.hpp"
 
 namespace sphark {
@@ -56,8 +57,8 @@ std::string ghost_frames(const std::string& lattice_frames, const std::filesyste
 // CSV. The penetration / accumulation roots (seed 004, eq. 37) end the run at their root time.
 class LatticeRun final : public SceneRun {
  public:
-  // A world with MPI: a distributed run (RCB domains, migration every kMigrateEvery steps, the
-  // domains recomputed every kRepartitionEvery; docs/scaling.md, "The lattice").
+  // A world with MPI: a distributed run (RCB domains, migrations on schedule_; docs/scaling.md,
+  // "The lattice").
   LatticeRun(const LatticeRunConfig& cfg, Communicator world = {})
       : cfg_(cfg), sys_(cfg.particles, lattice_params(cfg.params, cfg.particles)), world_(std::move(world)) {
     cpu0_ = process_cpu_seconds();
@@ -97,7 +98,6 @@ class LatticeRun final : public SceneRun {
   }
   bool changes_particles() const override { return parts_.has_value(); }
   std::optional<TimeLoopHooks::Resize> after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) override;
-  static constexpr long kMigrateEvery = 20, kRepartitionEvery = 100;
   std::vector<std::int64_t> global_ids() const override { return parts_ ? parts_->ids() : SceneRun::global_ids(); }
   std::vector<std::int64_t> take_share(const Checkpoint& c) override;
   LatticeRunResult result(const TimeLoopResult& loop) const;
@@ -121,7 +121,7 @@ class LatticeRun final : public SceneRun {
   Communicator world_;
   std::optional<DistributedParticles<2>> parts_;  // distributed runs
   std::vector<Real> y_;                           // distributed: this rank's initial state
-  long steps_ = 0;  // distributed: steps since t = 0 (the migration schedule; a restart: the checkpoint's)
+  MigrationSchedule schedule_;  // distributed: a migration every 20 steps, the domains anew every 100
   std::optional<ResumableVtkSeries> ghosts_;
   std::filesystem::path dir_;
   Real frame_every_ = 0, sampled_g_[2] = {1, 1};
@@ -205,23 +205,18 @@ ParticleFrame LatticeRun::frame(Real t, const Real* y) {
   return f;
 }
 
-// This rank's particles to their owners every kMigrateEvery steps (the leapfrog's derivative
-// along); the loop continues from the new state.
+// This rank's particles to their owners (run/migration_step.hpp); the loop continues from the new state.
 std::optional<TimeLoopHooks::Resize> LatticeRun::after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) {
   if (!parts_) return std::nullopt;
-  const long steps = ++steps_;
-  if (steps % kMigrateEvery != 0) return std::nullopt;
-  std::vector<Real> state(y, y + layout().size()), kick = carried();
-  const bool with_kick = world_.allreduce(std::int64_t(kick.empty() ? 0 : 1), ReduceOp::Max) == 1;
-  migrate_ghost_wcsph(*parts_, sys_, state, with_kick ? &kick : nullptr, steps % kRepartitionEvery == 0);
-  TimeLoopHooks::Resize r{layout(), std::move(state), {}, {}, std::nullopt};
-  if (with_kick) r.carried = std::move(kick);
-  return r;
+  return migration_step(schedule_, world_, layout(), y, carried, [&](std::vector<Real>& state, std::vector<Real>* kick, bool repartition) {
+    migrate_ghost_wcsph(*parts_, sys_, state, kick, repartition);
+    return layout();
+  });
 }
 
 std::vector<std::int64_t> LatticeRun::take_share(const Checkpoint& c) {
   if (!parts_) return SceneRun::take_share(c);
-  steps_ = static_cast<long>(c.scalar("steps"));  // the migration schedule continues
+  schedule_.steps = static_cast<long>(c.scalar("steps"));  // the migration schedule continues
   const StateLayout whole = layout().with_count(Species::Gas, parts_->global_particles());
   if (c.y.size() != whole.size()) throw std::invalid_argument("--restart: the checkpoint holds another lattice");
   const std::vector<std::int64_t>& ids = parts_->take_share(c.y.data() + whole.offset(Field::Position));

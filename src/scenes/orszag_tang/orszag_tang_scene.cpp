@@ -10,6 +10,7 @@
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
 #include "sphark/parallel/global_state.hpp"
+#include "sphark/run/migration_step.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/state_resort.hpp"
 #include "sphark/schemes/spmhd/spmhd_migration.hpp"
@@ -20,8 +21,8 @@ namespace {
 
 class OrszagTangRun final : public SceneRun {
  public:
-  // A world with MPI: a distributed run (RCB domains, migration every kMigrateEvery steps,
-  // domains recomputed every kRepartitionEvery; docs/scaling.md, "SPMHD").
+  // A world with MPI: a distributed run (RCB domains, migrations on schedule_; docs/scaling.md,
+  // "SPMHD and Orszag-Tang").
   OrszagTangRun(const std::string& variant, const OrszagTangParams& params, Communicator world = {})
       : ot_(variant, params), resort_{world.distributed() ? 0.0 : params.resort, 4.0 / params.nx}, world_(world) {
     if (!world_.distributed()) return;
@@ -59,16 +60,11 @@ class OrszagTangRun final : public SceneRun {
   bool changes_particles() const override { return resort_.threshold > 0 || parts_; }
   std::optional<TimeLoopHooks::Resize> after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) override {
     if (!parts_) return resort_if_scrambled<2>(ot_.scheme, ot_.scheme.layout(), y, resort_, std::optional(box_));
-    const long steps = ++steps_;
-    if (steps % kMigrateEvery != 0) return std::nullopt;
-    std::vector<Real> state(y, y + layout().size()), kick = carried();
-    const bool with_kick = world_.allreduce(std::int64_t(kick.empty() ? 0 : 1), ReduceOp::Max) == 1;
-    migrate_spmhd(*parts_, ot_.scheme, state, with_kick ? &kick : nullptr, steps % kRepartitionEvery == 0);
-    TimeLoopHooks::Resize r{layout(), std::move(state), {}, {}, std::nullopt};
-    if (with_kick) r.carried = std::move(kick);
-    return r;
+    return migration_step(schedule_, world_, layout(), y, carried, [&](std::vector<Real>& state, std::vector<Real>* kick, bool repartition) {
+      migrate_spmhd(*parts_, ot_.scheme, state, kick, repartition);
+      return layout();
+    });
   }
-  static constexpr long kMigrateEvery = 20, kRepartitionEvery = 100;
   // Distributed: checkpoints of the whole vortex; a restart on any number of ranks takes this
   // rank's RCB domain of the checkpoint's positions.
   std::vector<std::int64_t> global_ids() const override {
@@ -76,7 +72,7 @@ class OrszagTangRun final : public SceneRun {
   }
   std::vector<std::int64_t> take_share(const Checkpoint& c) override {
     if (!parts_) return SceneRun::take_share(c);
-    steps_ = static_cast<long>(c.scalar("steps"));  // the migration schedule continues
+    schedule_.steps = static_cast<long>(c.scalar("steps"));  // the migration schedule continues
     const StateLayout whole = layout().with_count(Species::Gas, parts_->global_particles());
     if (c.y.size() != whole.size()) throw std::invalid_argument("--restart: the checkpoint holds another vortex");
     const std::vector<std::int64_t>& ids = parts_->take_share(c.y.data() + whole.offset(Field::Position));
@@ -95,7 +91,7 @@ class OrszagTangRun final : public SceneRun {
   Communicator world_;
   std::optional<DistributedParticles<2>> parts_;  // distributed runs
   std::vector<Real> y_;                           // distributed: this rank's initial state
-  long steps_ = 0;  // distributed: steps since t = 0 (the migration schedule; a restart: the checkpoint's)
+  MigrationSchedule schedule_;  // distributed: a migration every 20 steps, the domains anew every 100
 };
 
 // The summary from the run's whole diagnostics table (a restarted run summarises from t = 0).

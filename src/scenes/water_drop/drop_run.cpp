@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sphark/run/migration_step.hpp"
 #include "sphark/run/restart.hpp"
 
 namespace sphark {
@@ -107,18 +108,16 @@ ParticleFrame DropRun::frame(Real t, const Real* y) {
   return f;
 }
 
-// This rank's particles to their owners; the loop continues from the new state (Stepper::resize).
+// This rank's particles to their owners (run/migration_step.hpp); the loop continues from the new state.
 std::optional<TimeLoopHooks::Resize> DropRun::after_step(Real, const Real* y, const TimeLoopHooks::CarriedData& carried) {
   if (!dist_) return std::nullopt;
-  const long steps = ++steps_;
-  if (steps % kMigrateEvery != 0) return std::nullopt;
-  // the leapfrog's derivative moves along (every rank alike, also one left without particles)
-  std::vector<Real> state(y, y + layout().size()), kick = carried();
-  const bool with_kick = world_.allreduce(std::int64_t(kick.empty() ? 0 : 1), ReduceOp::Max) == 1;
-  dist_->migrate(state, with_kick ? &kick : nullptr, steps % kRepartitionEvery == 0);
-  TimeLoopHooks::Resize r{layout(), std::move(state), water_drop_absolute_tolerances(*drop_, atol_), {}, std::nullopt};
-  if (with_kick) r.carried = std::move(kick);
-  return r;
+  return migration_step(
+      schedule_, world_, layout(), y, carried,
+      [&](std::vector<Real>& state, std::vector<Real>* kick, bool repartition) {
+        dist_->migrate(state, kick, repartition);
+        return layout();
+      },
+      [&] { return water_drop_absolute_tolerances(*drop_, atol_); });
 }
 
 std::vector<std::int64_t> DropRun::global_ids() const {
@@ -128,7 +127,7 @@ std::vector<std::int64_t> DropRun::global_ids() const {
 
 std::vector<std::int64_t> DropRun::take_share(const Checkpoint& c) {
   if (!dist_) return SceneRun::take_share(c);
-  steps_ = c.scalar("steps");  // the migration schedule continues
+  schedule_.steps = static_cast<long>(c.scalar("steps"));  // the migration schedule continues
   return dist_->take_share(c.y);
 }
 

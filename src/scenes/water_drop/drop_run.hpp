@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "sphark/run/migration_step.hpp"
 #include "sphark/run/scene.hpp"
 #include "sphark/scenes/water_drop/distributed_drop.hpp"
 #include "sphark/scenes/water_drop/water_drop.hpp"
@@ -62,7 +63,7 @@ class DropRun final : public SceneRun {
   WaterDrop* drop_;                        // the one of the two in use
   Real diagnostics_every_, frame_every_;
   Real atol_ = 0;    // of the stepper: the per-entry tolerances after a migration
-  long steps_ = 0;   // distributed: steps since t = 0 (the migration schedule; a restart: the checkpoint's)
+  MigrationSchedule schedule_{kMigrateEvery, kRepartitionEvery};  // distributed (a restart: the checkpoint's steps)
   DropRunSummary sum_;
   // the numbers of the accuracy summary accumulated sample by sample (saved in checkpoints)
   Real samples_ = 0, e0_ = 0, div_integral_ = 0, t_prev_ = 0, div_prev_ = 0, prev_exact_a_ = 0, prev_err_x_ = 0,
