@@ -30,11 +30,10 @@ namespace sphark {
 
 template <int D, class K>
 void SpmhdScheme<D, K>::distribute(Communicator comm, const std::vector<std::int64_t>& ids) {
-  if (!opt_.evolve_particles || opt_.field != FieldRepresentation::MagneticField || opt_.self_gravity ||
-      opt_.sink_particles)
+  if (opt_.field != FieldRepresentation::MagneticField || opt_.self_gravity || opt_.sink_particles)
     throw std::invalid_argument(
-        "SpmhdScheme::distribute: moving particles with the magnetic field only (no fixed particles, Euler "
-        "potentials, self-gravity or sinks distributed yet)");
+        "SpmhdScheme::distribute: the magnetic field only (no Euler potentials, self-gravity or sinks distributed yet)");
+  if (!opt_.evolve_particles) all_fixed_x_ = positions();  // every particle's, particle order
   std::vector<Real> masses(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
     if (ids[i] < 0 || static_cast<std::size_t>(ids[i]) >= m_.size())
@@ -57,6 +56,12 @@ void SpmhdScheme<D, K>::set_particles(std::vector<std::int64_t> ids, std::vector
   h_unset_ = !(opt_.h_initial > 0);
   solved_ = false;
   x_.assign(D * n_, 0);
+  if (!opt_.evolve_particles) {  // fixed particles: theirs (slots = particles until the first list build)
+    fixed_x_.resize(D * n_);
+    for (std::size_t a = 0; a < n_; ++a)
+      for (int k = 0; k < D; ++k) fixed_x_[D * a + k] = all_fixed_x_[D * static_cast<std::size_t>(halo_->ids()[a]) + k];
+    x_ = fixed_x_;
+  }
   allocate_per_particle();
   key_.assign(halo_->ids().begin(), halo_->ids().end());
   built_ = false;
@@ -110,6 +115,11 @@ const Communicator& SpmhdScheme<D, K>::communicator() const {
 }
 
 template <int D, class K>
+const Real* SpmhdScheme<D, K>::particle_positions(const Real* y) const {
+  return opt_.evolve_particles ? y + layout_.offset(Field::Position) : fixed_x_.data();
+}
+
+template <int D, class K>
 const std::uint32_t* SpmhdScheme<D, K>::slot_keys() const {
   return halo_ ? key_.data() : perm_.data();
 }
@@ -137,7 +147,7 @@ void SpmhdScheme<D, K>::resize_slots(std::size_t all) {
 template <int D, class K>
 int SpmhdScheme<D, K>::distributed_prepare_positions(Real t, const Real* y) {
   spmhd_detail::Halo<D>& halo = *halo_;
-  const Real* xs = y + layout_.offset(Field::Position);
+  const Real* xs = particle_positions(y);
   for (std::size_t s = 0; s < n_; ++s)
     for (int k = 0; k < D; ++k) x_from_state_[D * s + k] = xs[D * perm_[s] + k];
   // the serial memo: the solve is skipped while the positions are those it was made for
@@ -188,9 +198,10 @@ int SpmhdScheme<D, K>::distributed_density_attempt(Real t, const Real* y, int at
     plan_radius_[perm_[s]] = built_ ? std::max(r, radii_[s]) : r;  // the lists in use, or a rebuild's
   }
   std::optional<ScopedPhase> timer(std::in_place, Phase::Halo);
-  const bool new_plan = halo.update_plan(y + layout_.offset(Field::Position), plan_radius_, opt_.skin / (1 + opt_.skin));
+  const Real* xs = particle_positions(y);
+  const bool new_plan = halo.update_plan(xs, plan_radius_, opt_.skin / (1 + opt_.skin));
   if (new_plan) resize_slots(halo.all());
-  halo.exchange_geometry(y + layout_.offset(Field::Position), m_.data(), new_radius_.data());
+  halo.exchange_geometry(xs, m_.data(), new_radius_.data());
   for (std::size_t s = n_; s < n_all_; ++s) {
     const std::size_t k = perm_[s] - n_;  // halo particle k
     for (int c = 0; c < D; ++c) x_[D * s + c] = halo.x[D * k + c];
@@ -255,7 +266,7 @@ void SpmhdScheme<D, K>::exchange_halo_fields(const Real* y) {
   const bool energy = layout_.has(Field::InternalEnergy), cleaning = layout_.has(Field::Psi);
   for (std::size_t s = n_; s < n_all_; ++s) {
     const std::size_t k = perm_[s] - n_;  // halo particle k
-    for (int c = 0; c < D; ++c) v_[D * s + c] = halo.v[D * k + c];
+    for (int c = 0; c < D && opt_.evolve_particles; ++c) v_[D * s + c] = halo.v[D * k + c];
     for (int c = 0; c < 3; ++c) B_[3 * s + c] = halo.B[3 * k + c];
     if (energy) u_[s] = halo.u[k];
     if (cleaning) psi_[s] = halo.psi[k];
@@ -272,6 +283,7 @@ void SpmhdScheme<D, K>::exchange_halo_fields(const Real* y) {
   template const std::vector<std::int64_t>& SpmhdScheme<D, K>::ids() const;                           \
   template const Communicator& SpmhdScheme<D, K>::communicator() const;                               \
   template const std::uint32_t* SpmhdScheme<D, K>::slot_keys() const;                                 \
+  template const Real* SpmhdScheme<D, K>::particle_positions(const Real*) const;                      \
   template void SpmhdScheme<D, K>::resize_slots(std::size_t);                                          \
   template int SpmhdScheme<D, K>::distributed_prepare_positions(Real, const Real*);                   \
   template int SpmhdScheme<D, K>::distributed_density_attempt(Real, const Real*, int, std::string&);  \

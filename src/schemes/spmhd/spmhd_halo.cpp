@@ -43,7 +43,7 @@ void Halo<D>::exchange_fields(const Real* y, const StateLayout& L, const std::ve
     to.resize(width * halo());
     fields_.push_back({from, to.data(), width});
   };
-  add(v, y + L.offset(Field::Velocity), D);
+  if (L.has(Field::Velocity)) add(v, y + L.offset(Field::Velocity), D);  // (not for fixed particles)
   if (L.has(Field::InternalEnergy)) add(u, y + L.offset(Field::InternalEnergy), 1);
   add(B, y + L.offset(Field::MagneticField), 3);
   if (L.has(Field::Psi)) add(psi, y + L.offset(Field::Psi), 1);

@@ -56,7 +56,8 @@ class SpmhdScheme final : public OdeSystem {
   // Omega after the density solve), and every rank takes the same decisions (list rebuilds, the
   // density solve's retries, failures). Rows are summed in global-id order, so a distributed
   // run reproduces the serial one bit for bit. For moving particles with the magnetic field,
-  // without gravity or sinks; the stepper sees the local state (StepperOptions::communicator).
+  // or fixed particles (the cleaning subsystem), without gravity or sinks; the stepper sees the
+  // local state (StepperOptions::communicator).
   void distribute(Communicator comm, const std::vector<std::int64_t>& ids);
   // Collective, between steps (a migration): this rank now holds `ids` with `masses`; then
   // restore_migrated() with their migration_data(), or resume() (a restart: the next evaluation
@@ -243,6 +244,8 @@ class SpmhdScheme final : public OdeSystem {
   Real equation_of_state(std::size_t begin, std::size_t end);  // P, c, c_f of slots; the largest c_f
   void set_cleaning_speeds(std::size_t begin, std::size_t end);
   const std::uint32_t* slot_keys() const;                      // rows' sort keys: global ids per slot
+  const Real* particle_positions(const Real* y) const;         // this rank's, particle order (state or fixed)
+  std::vector<Real> all_fixed_x_, fixed_x_;                    // distributed fixed particles: every one's, this rank's
   // h_ from the bounding box of every rank's positions x (collective when distributed), on
   // this rank if `apply`
   void first_smoothing_lengths(const Real* x, bool apply);
