@@ -9,6 +9,8 @@
 #include "sphark/integrate/stepper.hpp"
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
+#include "sphark/parallel/distributed_particles.hpp"
+#include "sphark/parallel/global_state.hpp"
 #include "sphark/run/restart.hpp"
 
 namespace sphark {
@@ -19,11 +21,33 @@ constexpr Real kBlowUp = 1e4;  // the non-conservative form grows exponentially:
 
 class DiscRun final : public SceneRun {
  public:
-  DiscRun(const CleaningDiscVariant& v, Real sigma, Real spacing)
-      : v_(v), disc_(v.form, v.damped ? sigma : 0.0, spacing) {}
+  // A world with MPI: a distributed run (RCB domains of the fixed particles: no migration).
+  DiscRun(const CleaningDiscVariant& v, Real sigma, Real spacing, Communicator world = {})
+      : v_(v), disc_(v.form, v.damped ? sigma : 0.0, spacing), world_(std::move(world)) {
+    if (!world_.distributed()) return;
+    parts_.emplace(world_, disc_.particles.x.data(), disc_.scheme.particles());
+    y_ = share_of(disc_.scheme.layout(), disc_.y0, parts_->ids());
+    disc_.scheme.distribute(world_, parts_->ids());
+  }
   OdeSystem& system() override { return disc_.scheme; }
   const StateLayout& layout() const override { return disc_.scheme.layout(); }
-  std::vector<Real> initial_state() override { return disc_.y0; }
+  std::vector<Real> initial_state() override { return parts_ ? y_ : disc_.y0; }
+  StepperOptions stepper(const CoreOptions& core, std::string_view program) override {
+    StepperOptions o = SceneRun::stepper(core, program);
+    o.communicator = world_;
+    return o;
+  }
+  // Distributed: checkpoints of the whole disc; a restart on any number of ranks takes this
+  // rank's RCB domain anew.
+  std::vector<std::int64_t> global_ids() const override { return parts_ ? parts_->ids() : SceneRun::global_ids(); }
+  std::vector<std::int64_t> take_share(const Checkpoint& c) override {
+    if (!parts_) return SceneRun::take_share(c);
+    const std::vector<std::int64_t>& ids = parts_->take_share(disc_.particles.x.data());
+    std::vector<Real> masses(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) masses[i] = disc_.particles.m[static_cast<std::size_t>(ids[i])];
+    disc_.scheme.set_particles(ids, std::move(masses));
+    return ids;
+  }
   std::vector<std::string> columns() const override {
     return {"t", "mean_h_divB_over_B", "max_h_divB_over_B", "magnetic_energy", "psi_energy", "cleaning_energy",
             "cleaning_speed", "max_h_divB_over_B0"};
@@ -36,7 +60,11 @@ class DiscRun final : public SceneRun {
     return {t, d.mean_h_divb_over_b, d.max_h_divb_over_b, d.magnetic_energy, d.psi_energy, e_last_,
             d.cleaning_speed, d.max_h_divb / b0};
   }
-  ParticleFrame frame(Real t, const Real* y) override { return frame_.build(disc_.scheme, t, y); }
+  ParticleFrame frame(Real t, const Real* y) override {
+    ParticleFrame f = frame_.build(disc_.scheme, t, y);
+    if (parts_) f.ids = parts_->ids().data();  // parallel VTK: each particle's global id
+    return f;
+  }
   bool finished(Real) override { return e_last_ > kBlowUp * e0_; }
   std::vector<std::pair<std::string, Real*>> saved_numbers() override { return {{"e0", &e0_}, {"e_last", &e_last_}}; }
   void settings(TimeLoopSettings& s) override {
@@ -52,6 +80,9 @@ class DiscRun final : public SceneRun {
  private:
   CleaningDiscVariant v_;
   CleaningDisc disc_;
+  Communicator world_;
+  std::optional<DistributedParticles<2>> parts_;  // distributed runs
+  std::vector<Real> y_;                           // distributed: this rank's initial state
   SpmhdFrame frame_;
   Real e0_ = 0, e_last_ = 0;
 };
@@ -157,7 +188,7 @@ std::string CleaningDiscScene::scene_text(const std::string& run) const {
 }
 
 std::unique_ptr<SceneRun> CleaningDiscScene::make_run(const std::string& run, const CoreOptions&) {
-  return std::make_unique<DiscRun>(variant(run), sigma_, spacing_);
+  return std::make_unique<DiscRun>(variant(run), sigma_, spacing_, world());
 }
 
 // The square lattice inside the unit disc: pi / dx^2 points (1976 for dx = 0.04).
@@ -173,7 +204,7 @@ void CleaningDiscScene::finished(const std::string& run, SceneRun&, const TimeLo
 }
 
 int CleaningDiscScene::report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) {
-  if (results_.empty()) return 0;
+  if (results_.empty() || world().rank() != 0) return 0;  // distributed: rank 0 reports
   std::ostringstream summary;
   summary << "run, initial_max_h_divB_over_B, peak, final, growth_rate_of_max_h_divB, cleaning_energy_change, "
              "blew_up_at, rhs_evals, wall_s\n";

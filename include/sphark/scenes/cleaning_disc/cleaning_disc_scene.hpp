@@ -30,6 +30,7 @@ class CleaningDiscScene final : public Scene {
   void finished(const std::string& run, SceneRun& r, const TimeLoopResult& result) override;
   int report(const CoreOptions& core, const std::vector<std::string>& runs, bool all_ok) override;
   std::vector<ParaViewStateFile> paraview_states(const std::vector<std::string>& runs_done) const override;
+  bool supports_distributed_runs() const override { return true; }  // mpirun: SpmhdScheme::distribute
 
   struct Summary {
     std::string name;
