@@ -26,6 +26,9 @@ class DistributedParticles {
   std::size_t global_particles() const { return global_; }
   const Communicator& communicator() const { return comm_; }
 
+  // This rank's particles set by hand (tests: e.g. every particle on one rank); the next
+  // migrate() moves them to the owners of the current domains.
+  void assign(std::vector<std::int64_t> ids) { ids_ = std::move(ids); }
   // Collective: a restart's share, the positions x of every particle partitioned anew.
   const std::vector<std::int64_t>& take_share(const Real* x);
 

@@ -41,6 +41,11 @@ int SpmhdScheme<D, K>::build_neighbours(const Real* x) {
         error_ = "smoothing length grew beyond half the periodic box (list radius " + std::to_string(r_max) + ")";
         return 1;
       }
+  if (n_all_ == 0) {  // a rank left without particles (distributed): nothing to list
+    built_ = true;
+    max_list_ = 0;
+    return 0;
+  }
   // rows sorted by particle index (serially), by global id (distributed); the halo's rows empty
   ns_.build(x, n_all_, r_max, slot_keys(), radii_.data(), n_);
   built_ = true;

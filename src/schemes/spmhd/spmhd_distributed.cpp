@@ -211,7 +211,7 @@ int SpmhdScheme<D, K>::distributed_density_attempt(Real t, const Real* y, int at
   // support, disp the largest displacement of any particle; here with a 1e-9 margin, so that
   // the rule rearranged never keeps a list the serial form would find short
   Real v[3] = {0, -std::numeric_limits<Real>::infinity(), (!built_ || new_plan || attempt > 0) ? Real(1) : Real(0)};
-  if (built_ && !new_plan) v[0] = ns_.max_displacement_since_build(x_.data());
+  if (built_ && !new_plan && n_all_ > 0) v[0] = ns_.max_displacement_since_build(x_.data());
   for (std::size_t s = 0; s < n_; ++s) v[1] = std::max(v[1], K::support * h_[s] - radii_[s]);  // -slack
   halo.comm().allreduce(v, 3, ReduceOp::Max);
   timer.reset();
