@@ -105,7 +105,7 @@ testing::RunOutcome run(bool distributed) {
   return out;
 }
 
-TEST(Spmhd3D, CleaningWithResistivityMatchesSerialBitForBit) {
+TEST(SpmhdCube, CleaningWithResistivityMatchesSerialBitForBit) {
   const testing::RunOutcome serial = run(false), dist = run(true);
   testing::expect_equal_to_serial("3D cube, cleaning+resistivity", serial, dist, kChunks * kStepsPerChunk);
 }
