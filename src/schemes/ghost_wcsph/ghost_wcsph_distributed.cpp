@@ -108,7 +108,7 @@ template <class K>
 int GhostWcsph<K>::prepare_if_moved_distributed(const Real* y) {
   const Real* x = y + layout_.offset(Field::Position);
   const bool known = prepared_ || relink_;
-  const bool moved = !known || std::memcmp(x, x_prepared_.data(), 2 * n_ * sizeof(Real)) != 0;
+  const bool moved = !known || (n_ > 0 && std::memcmp(x, x_prepared_.data(), 2 * n_ * sizeof(Real)) != 0);
   std::int64_t flags[2] = {moved ? 1 : 0, prepared_ ? 0 : 1};
   halo_->comm.allreduce(flags, 2, ReduceOp::Max);
   if (flags[0] != 0) return distributed_prepare(y, true);
