@@ -14,6 +14,7 @@
 #include "scene_cost.hpp"
 #include "sphark/cli/run_record.hpp"
 #include "sphark/integrate/stepper.hpp"
+#include "sphark/parallel/mpi_session.hpp"
 #include "sphark/run/concurrent_jobs.hpp"
 #include "sphark/run/restart.hpp"
 #include "sphark/run/scene.hpp"
@@ -308,7 +309,13 @@ void check_distributed(const Scene& scene) {
 
 }  // namespace
 
-int run_scene_main(Scene& scene, int argc, char** argv) { return run_scene_main(scene, argc, argv, Communicator{}); }
+// An example whose main does not distribute, started by mpirun: every rank would run the whole
+// thing into the same files. Refused (exit 2 on every rank).
+int run_scene_main(Scene& scene, int argc, char** argv) {
+  if (MpiSession::launched_by_mpirun())
+    exit_usage_error(scene.program(), "", "this example does not run distributed (mpirun); run it without mpirun");
+  return run_scene_main(scene, argc, argv, Communicator{});
+}
 
 int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& world) {
   scene.set_world(world);
