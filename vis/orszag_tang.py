@@ -43,9 +43,10 @@ def frame_at(run_dir, t_want):
 
 
 def read_vtp(path, names):
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    """A frame: .vtp, or a distributed run's .pvtp (its pieces merged by the parallel reader)."""
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPPolyDataReader
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    r = vtkXMLPolyDataReader()
+    r = vtkXMLPPolyDataReader() if path.endswith(".pvtp") else vtkXMLPolyDataReader()
     r.SetFileName(path)
     r.Update()
     pd = r.GetOutput()
