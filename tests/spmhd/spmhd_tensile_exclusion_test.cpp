@@ -5,9 +5,13 @@
 //  - a radius covering some: the particles outside it have their derivatives bit for bit, those
 //    inside differ, the momentum budget's tensile part is what the RHS injects, and the
 //    injection the exclusion removes is the change of the RHS's momentum rate;
-//  - radius 0: the scheme as before, bit for bit.
+//  - radius 0: the scheme as before, bit for bit;
+//  - weighted by plasma beta (Phantom's switch): each particle's acceleration is the one without
+//    the correction plus its weight (1 below beta_full, 0 above beta_none, linear between) times
+//    the whole correction, and the budget still accounts for all the injection.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -92,4 +96,43 @@ TEST(TensileExclusion, OnlyTheParticlesInsideTheRadiusChange) {
   // RHS's momentum rate
   EXPECT_GT((a.budget.tensile - b.budget.tensile).norm(), 1e-3 * a.budget.tensile.norm());
   EXPECT_LT(((a.budget.tensile - b.budget.tensile) - (a.rate - b.rate)).norm(), 1e-13 * a.scale);
+}
+
+namespace {
+// Plasma beta 2P/|B|^2 of each gas particle of the clump, in particle order.
+std::vector<Real> plasma_beta(const test::Clump& c) {
+  const StateLayout& L = c.scheme->layout();
+  const std::vector<Real>& P = c.scheme->pressure();
+  std::vector<Real> beta(L.particles(Species::Gas));
+  for (std::size_t a = 0; a < beta.size(); ++a)
+    beta[a] = 2 * P[a] / Eigen::Map<const Vec<3>>(&c.y[L.offset(Field::MagneticField) + 3 * a]).squaredNorm();
+  return beta;
+}
+}  // namespace
+
+TEST(TensileBetaSwitch, EachParticleGetsItsShareOfTheCorrection) {
+  test::Clump whole = test::clump();
+  const Evaluated a = evaluate(whole);
+  std::vector<Real> beta = plasma_beta(whole), sorted = beta;
+  std::sort(sorted.begin(), sorted.end());
+  // the ramp between the quartiles: a quarter of the particles whole, a half weighted, a quarter none
+  const Real full = sorted[sorted.size() / 4], none = sorted[3 * sorted.size() / 4];
+  ASSERT_LT(full, none);
+  test::Clump weighted = test::clump(0, full, none), without = test::clump(10.0);
+  const Evaluated w = evaluate(weighted), o = evaluate(without);
+  const StateLayout& L = whole.scheme->layout();
+  std::size_t ramped = 0;
+  for (std::size_t p = 0; p < beta.size(); ++p) {
+    const Real share = beta[p] < full ? 1.0 : beta[p] < none ? (none - beta[p]) / (none - full) : 0.0;
+    ramped += share > 0 && share < 1;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = L.offset(Field::Velocity) + 3 * p + k;
+      const Real expected = o.ydot[i] + share * (a.ydot[i] - o.ydot[i]);
+      EXPECT_NEAR(w.ydot[i], expected, 1e-12 * (std::abs(a.ydot[i]) + std::abs(o.ydot[i]))) << p;
+    }
+  }
+  EXPECT_GT(ramped, beta.size() / 4);
+  EXPECT_GT((w.rate - a.rate).norm(), 1e-3 * a.rate.norm());  // the switch changes the injection
+  EXPECT_LT((w.budget.total - w.rate).norm(), 1e-13 * w.scale);
+  EXPECT_LT((w.budget.total - w.budget.tensile).norm(), 1e-12 * w.scale);
 }

@@ -53,6 +53,7 @@ SpmhdOptions cloud_collapse_options(const CloudCollapseParams& p, const CloudNum
   o.alpha_u = 0;
   o.subtract_monopole_force = p.tensile_correction;
   o.tensile_sink_exclusion = p.tensile_exclusion * c.accretion_radius;
+  o.tensile_beta_none = p.tensile_beta_none;
   if (p.variant != "none") {
     o.cleaning = Cleaning::Constrained;
     o.sigma = p.sigma;

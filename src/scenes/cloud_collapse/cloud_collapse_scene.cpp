@@ -49,6 +49,9 @@ void CloudCollapseScene::add_options(OptionParser& p) {
   p.add_flag("--no-tensile-correction", &no_tensile_correction_, "leave out the correction (9) of the Maxwell stress");
   p.add("--tensile-exclusion", &params_.tensile_exclusion,
         "leave out the correction (9) for gas within this many accretion radii of a sink (0: nowhere)", Range{0, 100});
+  p.add("--tensile-beta", &params_.tensile_beta_none,
+        "apply the correction (9) whole below plasma beta 2, less above, none above this beta (Phantom: 10; 0: at every beta)",
+        Range{0, 1e6});
   p.add("--courant", &params_.courant, "Courant number of dt = C h / v_sig", Range{0.01, 1});
   p.add("--cleaning-courant", &params_.cleaning_courant,
         "the cleaning wave's own Courant number C_h: dt <= C_h h / (c_h + 3|v|), 0 = the Courant number", Range{0.0, 2.0});
@@ -113,6 +116,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   append_key_value(text, "gravity", gravity_);
   append_key_value(text, "theta", params_.theta);
   if (params_.tensile_exclusion > 0) append_key_value(text, "tensile_exclusion", params_.tensile_exclusion);
+  if (params_.tensile_beta_none > 0) append_key_value(text, "tensile_beta", params_.tensile_beta_none);
   if (params_.opening != GravityOpening::Fixed) append_key_value(text, "opening", opening_);  // old checkpoints restart
   append_key_value(text, "step_floor", params_.step_floor_tff);
   return text;

@@ -35,7 +35,7 @@ struct FinishInput {
   Real cleaning_speed;  // global c_h
   bool evolve, induction, cleaning, constrained, local_ch, subtract_monopole;
   Real sigma;
-  const std::uint8_t* tensile_off;  // per slot, or nullptr
+  const Real* tensile_weight;  // per slot, or nullptr (1 everywhere)
 };
 
 // Where the pair loop writes: state derivatives (at particle perm[a]) and per-slot diagnostics.
@@ -73,8 +73,8 @@ inline void finish_particle(const PairSums<D>& s, const ParticleA<D>& pa, const 
   if (in.evolve) {
     out.div_v[a] = s.continuity * -inv_omega_rho;
     Vec<D> dv_dt = s.dv_dt;
-    if (in.subtract_monopole && !(in.tensile_off && in.tensile_off[a]))
-      mhd::subtract_monopole_force<D>(dv_dt, pa.B, s.monopole);  // eq. (9)
+    if (in.subtract_monopole)  // eq. (9), weighted near sinks and by beta (SpmhdScheme::tensile_weights)
+      mhd::subtract_monopole_force<D>(dv_dt, pa.B, in.tensile_weight ? in.tensile_weight[a] * s.monopole : s.monopole);
     Eigen::Map<Vec<D>>(out.dx_dt + D * p) = pa.v;
     Eigen::Map<Vec<D>>(out.dv_dt + D * p) = dv_dt;
     if (out.du_dt) out.du_dt[p] = in.P[a] * in.inv_omega_rho2[a] * s.continuity + s.du_dt_dissipation;
@@ -156,7 +156,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
   const FinishInput fin{cleaning ? psi_.data() : nullptr, omega_.data(), P_.data(), inv_omega_rho2_.data(),
                         cleaning_speeds_.data(), cleaning_speed_, evolve, induction, cleaning,
                         opt_.cleaning == Cleaning::Constrained, opt_.local_ch, opt_.subtract_monopole_force, opt_.sigma,
-                        tensile_exclusion(y)};
+                        tensile_weights(y)};
   auto derivative = [&](Field f, bool present) { return present ? ydot + layout_.offset(f) : nullptr; };
   const PairLoopOutput out{perm_.data(),
                            derivative(Field::Position, evolve), derivative(Field::Velocity, evolve),

@@ -11,20 +11,33 @@
 
 namespace sphark {
 
-// The gas slots within opt_.tensile_sink_exclusion of a sink (minimum image), where the force
-// pass leaves eq. (9) out; nullptr when it is applied everywhere.
+// The share of eq. (9) the force pass applies to each slot: none within
+// opt_.tensile_sink_exclusion of a sink (minimum image); with opt_.tensile_beta_none > 0, all of
+// it where beta = 2P/|B|^2 < tensile_beta_full, none above tensile_beta_none, linear between
+// (Phantom's switch). nullptr when it is applied whole everywhere.
 template <int D, class K>
-const std::uint8_t* SpmhdScheme<D, K>::tensile_exclusion(const Real* y) {
+const Real* SpmhdScheme<D, K>::tensile_weights(const Real* y) {
   const std::size_t ns = layout_.particles(Species::Sink);
-  if (!opt_.subtract_monopole_force || !(opt_.tensile_sink_exclusion > 0) || ns == 0) return nullptr;
-  const Real r2 = opt_.tensile_sink_exclusion * opt_.tensile_sink_exclusion;
-  const Real* xs = y + layout_.offset(Species::Sink, Field::Position);
-  const MinimumImage<D> image(ns_.box());
-  tensile_off_.assign(n_, 0);
-  for (std::size_t a = 0; a < n_; ++a)
-    for (std::size_t k = 0; k < ns; ++k)
-      if (image(x_.data() + D * a, xs + 3 * k).squaredNorm() < r2) tensile_off_[a] = 1;
-  return tensile_off_.data();
+  const bool near_sinks = opt_.tensile_sink_exclusion > 0 && ns > 0, by_beta = opt_.tensile_beta_none > 0;
+  if (!opt_.subtract_monopole_force || !(near_sinks || by_beta)) return nullptr;
+  tensile_weight_.assign(n_, 1.0);
+  if (by_beta) {
+    const Real full = opt_.tensile_beta_full, none = opt_.tensile_beta_none;
+    for (std::size_t a = 0; a < n_; ++a) {
+      const Real B2 = Eigen::Map<const Vec<3>>(&B_[3 * a]).squaredNorm();
+      const Real beta = B2 > 0 ? 2 * P_[a] / B2 : std::numeric_limits<Real>::infinity();
+      tensile_weight_[a] = beta < full ? 1.0 : beta < none ? (none - beta) / (none - full) : 0.0;
+    }
+  }
+  if (near_sinks) {
+    const Real r2 = opt_.tensile_sink_exclusion * opt_.tensile_sink_exclusion;
+    const Real* xs = y + layout_.offset(Species::Sink, Field::Position);
+    const MinimumImage<D> image(ns_.box());
+    for (std::size_t a = 0; a < n_; ++a)
+      for (std::size_t k = 0; k < ns; ++k)
+        if (image(x_.data() + D * a, xs + 3 * k).squaredNorm() < r2) tensile_weight_[a] = 0;
+  }
+  return tensile_weight_.data();
 }
 
 template <int D, class K>
@@ -56,10 +69,10 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
   const auto gradient_factor = [&](std::size_t a, Real r) {
     return K::unit_f_over_r(r / h_[a], h_[a] / r) / h_power[a];
   };
-  const std::uint8_t* off = tensile_exclusion(y);
+  const Real* weight = tensile_weights(y);
   std::vector<std::uint32_t> near;
   for (std::size_t a = 0; a < n_; ++a) {  // slots, serial: a fixed summation order
-    if (off && off[a]) continue;
+    if (weight && weight[a] == 0) continue;
     Real S = 0;  // eq. (9)'s symmetric divergence
     const Eigen::Map<const Vec<D>> oB_a(&bo[3 * a]);
     const std::size_t n_near = entries_within_reach(a, image, near);  // list order, as gravity_pass
@@ -71,14 +84,14 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
       const Vec<D> g_a = gradient_factor(a, r) * x_ab, g_b = gradient_factor(b, r) * x_ab;
       S += mhd::monopole_term(ms_[b], oB_a, g_a, Eigen::Map<const Vec<D>>(&bo[3 * b]), g_b);
     }
-    m.tensile -= ms_[a] * S * Eigen::Map<const Vec<3>>(&B_[3 * a]).template head<D>();
+    m.tensile -= ms_[a] * (weight ? weight[a] * S : S) * Eigen::Map<const Vec<3>>(&B_[3 * a]).template head<D>();
   }
   return m;
 }
 
 #define SPHARK_SPMHD_MOMENTUM(D, K)                                                              \
   template SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Real, const Real*); \
-  template const std::uint8_t* SpmhdScheme<D, K>::tensile_exclusion(const Real*);
+  template const Real* SpmhdScheme<D, K>::tensile_weights(const Real*);
 #define SPHARK_SPMHD_MOMENTUM_2D_3D(K) SPHARK_SPMHD_MOMENTUM(2, K<2>) SPHARK_SPMHD_MOMENTUM(3, K<3>)
 SPHARK_KERNELS(SPHARK_SPMHD_MOMENTUM_2D_3D)
 #undef SPHARK_SPMHD_MOMENTUM_2D_3D

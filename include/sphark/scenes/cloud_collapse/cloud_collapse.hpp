@@ -55,6 +55,7 @@ struct CloudCollapseParams {
   bool local_ch = false;
   bool tensile_correction = true;     // seed 000, eq. (9)
   Real tensile_exclusion = 0;         // eq. (9) left out within this many r_acc of a sink (0: nowhere)
+  Real tensile_beta_none = 0;         // eq. (9) whole below beta 2, none above this (Phantom's switch; 0: every beta)
   Real courant = 0.3;
   Real cleaning_courant = 0;          // the cleaning wave's own C_h (0 = courant; SpmhdOptions::cleaning_courant)
   Real force_courant = 0.25;

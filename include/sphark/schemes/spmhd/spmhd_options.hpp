@@ -47,6 +47,10 @@ struct SpmhdOptions {
   // eq. (9) left out for gas closer than this to a sink (0: applied everywhere): next to an
   // accretion radius the field's support has a hole and h|div B|/|B| is O(1) (docs/cloud_collapse.md)
   Real tensile_sink_exclusion = 0;
+  // eq. (9) weighted by plasma beta = 2P/|B|^2 (Phantom's switch, force.F90 since 2018): whole
+  // below tensile_beta_full, falling linearly to nothing at tensile_beta_none; 0: applied at every beta
+  Real tensile_beta_full = 2;
+  Real tensile_beta_none = 0;
   Real alpha_visc = 1.0;        // artificial viscosity (0 = off)
   Real beta_visc = 2.0;         // signal velocity v_sig = (c_a + c_b)/2 - beta w_ab for w_ab < 0
   Real alpha_u = 1.0;           // artificial thermal conductivity (0 = off), v_sig = sqrt(|dP|/rho_ab)

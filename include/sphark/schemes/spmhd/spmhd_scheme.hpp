@@ -204,7 +204,7 @@ class SpmhdScheme final : public OdeSystem {
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   // The pair loops over the slots `only` (ascending), or all slots when null.
   void force_pass(const Real* y, Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_forces.cpp
-  const std::uint8_t* tensile_exclusion(const Real* y);  // per slot: 1 = no eq. (9) (near a sink); nullptr: none
+  const Real* tensile_weights(const Real* y);  // per slot: the share of eq. (9) applied; nullptr: all of it everywhere
   void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
@@ -270,7 +270,7 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
   Real t_h_ = 0;               // the time of the state h_ was solved for
   bool h_rate_known_ = false;  // divv_ is from a force pass after the last solve (predict_smoothing_lengths)
-  std::vector<std::uint8_t> tensile_off_;  // tensile_exclusion
+  std::vector<Real> tensile_weight_;  // tensile_weights
   std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
   std::vector<Real> scratch_;
   std::vector<Real> subset_scratch_;           // rhs_subset: the sink forces of all particles
