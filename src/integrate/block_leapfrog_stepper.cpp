@@ -18,6 +18,9 @@
 // w_half + dt/2 ẇ_n, as in "leapfrog"). An ending particle takes a new level at once if it
 // needs a shorter step, a longer one only where that step's grid aligns with the current tick.
 // All levels meet at the end of the cycle; there (t, y) is synchronised and returned.
+// Synchronising early (StepperOptions::synchronise said so at the cycle's start or its last
+// event): at the next event every particle not ending its step there is cut back as a woken one, evaluated and
+// kicked, and the cycle ends there; the next one bins every particle afresh.
 //
 // With one level for all particles this is the global "leapfrog" KDK. Across levels, linear
 // momentum is conserved only to the time-stepping error, not to round-off: a pair force is
@@ -67,12 +70,13 @@ class BlockLeapfrogStepper final : public Stepper {
  private:
   void index_entries();
   std::int64_t length(int level) const { return kTicks >> level; }
-  void cycle(Real top, Real t_end);
+  Real cycle(Real top, Real t_end);  // the time it ended at
   void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
   void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
   std::vector<std::size_t> ending_at(std::int64_t tick) const;
   void predict(std::int64_t tick);
   std::vector<std::size_t> woken_at(Real t, std::int64_t tick, const std::vector<std::size_t>& ending);
+  std::vector<std::size_t> all_but(const std::vector<std::size_t>& ending) const;
   void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
   void evaluate(Real t, const std::vector<std::size_t>& active);
   void count(const std::vector<std::size_t>& active);
@@ -127,7 +131,7 @@ std::vector<Real> BlockLeapfrogStepper::resume_data() const {
   if (failed_) return {};
   std::vector<Real> r = dy_;
   r.insert(r.end(), level_.begin(), level_.end());
-  r.push_back(bins_.dt_top() != top_ ? 1 : 0);  // after a shortened landing step: bin afresh
+  r.push_back(fresh_ || bins_.dt_top() != top_ ? 1 : 0);  // after a shortened or synchronised step: bin afresh
   return r;
 }
 
@@ -230,6 +234,17 @@ std::vector<std::size_t> BlockLeapfrogStepper::woken_at(Real t, std::int64_t tic
   return woken;
 }
 
+// Every particle not in `ending` (ascending): all of them end their steps at a synchronising event.
+std::vector<std::size_t> BlockLeapfrogStepper::all_but(const std::vector<std::size_t>& ending) const {
+  std::vector<std::size_t> rest;
+  std::size_t e = 0;
+  for (std::size_t i = 0; i < level_.size(); ++i) {
+    while (e < ending.size() && ending[e] < i) ++e;
+    if (!(e < ending.size() && ending[e] == i)) rest.push_back(i);
+  }
+  return rest;
+}
+
 // A woken particle's step is cut to its elapsed part e: the drift and the start kick it got with
 // the step's full length become those of a step of length e (its old derivative kept in old_dy_).
 void BlockLeapfrogStepper::cut_back(const std::vector<std::size_t>& woken, std::int64_t tick) {
@@ -256,8 +271,9 @@ void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& acti
     for (std::size_t k : entries_[i]) dy_[k] = out_[k];
 }
 
-// One top step: kicks at every particle's step start and end, drifts of all at every event.
-void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
+// One top step: kicks at every particle's step start and end, drifts of all at every event;
+// ended early at an event where StepperOptions::synchronise asks for it.
+Real BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   tick_dt_ = std::ldexp(top, -kMaxLevel);
   w_ = y_;
   eval_ = y_;
@@ -268,6 +284,8 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   fresh_ = false;
   kick(all, 0.5, w_);
   std::int64_t tick = 0;
+  bool synchronise = opts_.synchronise && opts_.synchronise(t_, y_.data());  // then the first event ends it
+  Real t = t_;
   while (tick < kTicks) {
     std::int64_t next = kTicks;
     for (std::size_t i = 0; i < level_.size(); ++i) next = std::min(next, start_[i] + length(level_[i]));
@@ -275,10 +293,13 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
     for (std::size_t k = 0; k < np_; ++k) w_[xp_ + k] += dt * w_[vp_ + k];
     tick = next;
     ++events_;
-    const Real t = next == kTicks ? t_end : t_ + static_cast<Real>(tick) * tick_dt_;
+    t = next == kTicks ? t_end : t_ + static_cast<Real>(tick) * tick_dt_;
     const std::vector<std::size_t> ending = ending_at(tick);
     predict(tick);
-    const std::vector<std::size_t> woken = tick < kTicks ? woken_at(t, tick, ending) : std::vector<std::size_t>{};
+    const bool last = tick == kTicks || synchronise;
+    const std::vector<std::size_t> woken = tick == kTicks ? std::vector<std::size_t>{}
+                                           : synchronise  ? all_but(ending)
+                                                          : woken_at(t, tick, ending);
     std::vector<std::size_t> active = ending;
     if (!woken.empty()) {
       cut_back(woken, tick);
@@ -298,13 +319,16 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
       const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_;
       for (std::size_t k : entries_[i]) w_[k] += 0.5 * e * dy_[k];
     }
-    if (tick == kTicks) break;
+    if (last) break;
+    synchronise = opts_.synchronise && opts_.synchronise(t, eval_.data());
     rebin(t, active, tick, false);
     kick(active, 0.5, w_);  // start of their next steps
   }
+  if (tick < kTicks) fresh_ = true;  // ended early: the next cycle bins afresh
   y_ = w_;
-  t_ = t_end;
-  last_dt_ = top;
+  t_ = t;
+  last_dt_ = static_cast<Real>(tick) * tick_dt_;
+  return t;
 }
 
 AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
@@ -321,7 +345,7 @@ AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
     if (top != bins_.dt_top()) bins_ = LevelPartition(top, kMaxLevel, opts_.partition_hysteresis), fresh_ = true;
     AdvanceStatus status = AdvanceStatus::Stepped;
     try {
-      cycle(top, landing ? t_out : t_ + top);
+      cycle(top, landing ? t_out : t_ + top);  // sets t_: earlier than that when synchronised early
     } catch (const CycleInterrupted&) {
       status = AdvanceStatus::Interrupted;
     } catch (...) {

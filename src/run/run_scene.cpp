@@ -143,6 +143,7 @@ TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming, bool distributed) {
       return run.after_step(t, y, carried);
     };
     h.restart_layout = [&run](const Checkpoint& c) { return run.restart_layout(c); };
+    h.event_due = [&run](Real t, const Real* y) { return run.event_due(t, y); };
   }
   return h;
 }

@@ -96,6 +96,7 @@ void TimeLoop::bound_steps(OdeSystem& system) {
   }
   if (opts_.step_floor <= 0) opts_.step_floor = s_.step_floor_fraction * t_end_;
   if (!opts_.interrupt) opts_.interrupt = [this] { return stop_signal() != 0; };
+  if (!opts_.synchronise && hooks_.event_due) opts_.synchronise = hooks_.event_due;
   if (s_.inject_nan_at > 0) opts_.inject_nan_from = s_.inject_nan_at;
 }
 

@@ -31,6 +31,17 @@ GasArrays gas_of(SpmhdScheme<3>& s, Real t, const Real* y) {
   return g;
 }
 
+// The gas of state y as accretion reads it: positions, velocities, masses.
+GasView moving_gas(const SpmhdScheme<3>& s, const Real* y) {
+  const StateLayout& L = s.layout();
+  GasView moving;
+  moving.n = s.particles();
+  moving.x = y + L.offset(Field::Position);
+  moving.v = y + L.offset(Field::Velocity);
+  moving.mass = s.masses().data();
+  return moving;
+}
+
 // The state after the event: the gas without `removed`, the sinks `sinks` (all of them rewritten).
 TimeLoopHooks::Resize apply(SpmhdScheme<3>& s, const Real* y, const SinkUpdate& update) {
   const StateLayout& from = s.layout();
@@ -69,17 +80,18 @@ std::vector<Sink> sinks_of(const SpmhdScheme<3>& s, const Real* y, Real accretio
   return sinks;
 }
 
+bool sink_event_due(const SpmhdScheme<3>& s, const Real* y, const SinkParams& params) {
+  const std::vector<Real>& rho = s.rho();
+  if (!rho.empty() && *std::max_element(rho.begin(), rho.end()) > params.rho_sink) return true;
+  const std::vector<Sink> sinks = sinks_of(s, y, params.accretion_radius);
+  return !sinks.empty() && !accrete(moving_gas(s, y), sinks, params).removed.empty();
+}
+
 std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& s, Real t, const Real* y, const SinkParams& params,
                                                  SinkEventLog& log) {
   const std::vector<Sink> sinks = sinks_of(s, y, params.accretion_radius);
   if (!sinks.empty()) {  // accretion reads positions, velocities and masses only: no evaluation
-    const StateLayout& L = s.layout();
-    GasView moving;
-    moving.n = s.particles();
-    moving.x = y + L.offset(Field::Position);
-    moving.v = y + L.offset(Field::Velocity);
-    moving.mass = s.masses().data();
-    const SinkUpdate fed = accrete(moving, sinks, params);
+    const SinkUpdate fed = accrete(moving_gas(s, y), sinks, params);
     if (fed.removed.size() >= s.particles()) {
       log.gas_exhausted = true;
       return std::nullopt;

@@ -19,6 +19,10 @@ std::optional<TimeLoopHooks::Resize> SinkRunSupport::after_step(SpmhdScheme<3>& 
   return r;
 }
 
+bool SinkRunSupport::event_due(const SpmhdScheme<3>& scheme, const Real* y) const {
+  return sink_event_due(scheme, y, params_);
+}
+
 std::vector<std::pair<std::string, Real*>> SinkRunSupport::saved_numbers() {
   return {{"sink_creations", &creations_}, {"accreted_particles", &accreted_}, {"first_sink_time", &first_creation_t_}};
 }

@@ -5,6 +5,7 @@
 // the state the RHS still conserves momentum to round-off (sink-gas and sink-sink gravity).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -12,6 +13,7 @@
 
 #include "sphark/initial/spheres.hpp"
 #include "sphark/sinks/sink_events.hpp"
+#include "sphark/sinks/sink_run.hpp"
 
 using namespace sphark;
 
@@ -138,4 +140,41 @@ TEST(SinkEvents, ACollapsedClumpMakesASinkThenFeedsItConservingEverything) {
     EXPECT_EQ(fed->y[s.layout().offset(Field::Velocity) + 3 * last_new + k],
               y_gas_before[L_before.offset(Field::Velocity) + 3 * last_old + k]);
   }
+}
+
+// SinkRunSupport::event_due (what makes block steps synchronise, StepperOptions::synchronise):
+// true exactly when a gas particle is denser than rho_sink at the last evaluation or the sinks
+// would accrete one (inside the accretion radius and bound to the sink).
+TEST(SinkEvents, AnEventIsDueExactlyWhenACandidateOrGasToAccreteExists) {
+  const ParticlePlacement place = clump();
+  SpmhdScheme<3> s(std::vector<Real>(place.size(), place.particle_mass), sink_options());
+  std::vector<Real> y = clump_state(s, place), ydot(y.size());
+  ASSERT_EQ(s.rhs(0, y.data(), ydot.data()), 0) << s.last_error();
+  const Real rho_max = *std::max_element(s.rho().begin(), s.rho().end());
+  SinkParams p;
+  p.accretion_radius = 0.08;
+  p.rho_sink = rho_max * (1 + 1e-12);
+  EXPECT_FALSE(SinkRunSupport(p).event_due(s, y.data()));
+  p.rho_sink = rho_max * (1 - 1e-12);
+  EXPECT_TRUE(SinkRunSupport(p).event_due(s, y.data()));
+  SinkEventLog log;
+  std::optional<TimeLoopHooks::Resize> r = sink_events(s, 0, y.data(), p, log);
+  ASSERT_TRUE(r.has_value());
+  std::vector<Real> y1 = r->y, dy1(y1.size());
+  ASSERT_EQ(s.rhs(0, y1.data(), dy1.data()), 0) << s.last_error();
+  p.rho_sink = 2 * rho_max;  // no candidate any more: only accretion can be due
+  const StateLayout& L = s.layout();
+  Eigen::Map<Vec<3>> sink_x(y1.data() + L.offset(Species::Sink, Field::Position));
+  sink_x = Eigen::Map<const Vec<3>>(y1.data() + L.offset(Field::Position) + 3 * 7);  // on a gas particle
+  EXPECT_TRUE(SinkRunSupport(p).event_due(s, y1.data()));
+  Real nearest = std::numeric_limits<Real>::infinity();
+  sink_x = Vec<3>(0.3, 0, 0);  // outside the clump (radius 0.1)
+  for (std::size_t a = 0; a < s.particles(); ++a)
+    nearest = std::min(nearest, (Eigen::Map<const Vec<3>>(y1.data() + L.offset(Field::Position) + 3 * a) - Vec<3>(sink_x)).norm());
+  p.accretion_radius = nearest * (1 - 1e-12);
+  EXPECT_FALSE(SinkRunSupport(p).event_due(s, y1.data()));
+  p.accretion_radius = nearest * (1 + 1e-12);
+  EXPECT_TRUE(SinkRunSupport(p).event_due(s, y1.data()));
+  Eigen::Map<Vec<3>>(y1.data() + L.offset(Species::Sink, Field::Velocity)) = Vec<3>(100, 0, 0);  // unbound: not accreted
+  EXPECT_FALSE(SinkRunSupport(p).event_due(s, y1.data()));
 }

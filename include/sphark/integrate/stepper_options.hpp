@@ -49,6 +49,12 @@ struct StepperOptions {
   // signals, run/signals.hpp). Empty: never. A distributed run polls it on every rank and
   // agrees on the answer (collective). The poll does not change a run that is not interrupted.
   std::function<bool()> interrupt;
+  // Steppers whose particles take steps of their own ("leapfrog-blocks") poll it after every
+  // event with the time and the (predicted) state the event evaluated: true ends the top step at
+  // the next event with every particle synchronised there, so that what happens between steps
+  // (the time loop's after_step: sinks created, gas accreted) happens then and not only once per
+  // top step. Empty: never. Global steppers synchronise every step and do not poll it.
+  std::function<bool(Real t, const Real* y)> synchronise;
   // Restart: Stepper::resume_data() of the run being continued (see stepper.hpp); empty = none.
   std::vector<Real> resume_data;
   // Testing aid of the blow-up path: from this time on the guard (integrate/guarded_system.hpp)

@@ -76,6 +76,10 @@ class SceneRun {
     return std::nullopt;
   }
   virtual StateLayout restart_layout(const Checkpoint& /*c*/) { return layout(); }
+  // With changes_particles: true when after_step would change them at (t, y) now (a sink
+  // candidate, gas inside an accretion radius), so that a stepper whose particles take steps of
+  // their own synchronises them (StepperOptions::synchronise, TimeLoopHooks::synchronise).
+  virtual bool event_due(Real /*t*/, const Real* /*y*/) { return false; }
   // A distributed run (Scene::supports_distributed_runs): the global ids of this rank's particles
   // in state order, and on a restart this rank's share of the checkpoint's particles, which the
   // system then holds (TimeLoopHooks::global_ids, take_share).

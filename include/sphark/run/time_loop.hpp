@@ -109,6 +109,10 @@ struct TimeLoopHooks {
   };
   using CarriedData = std::function<std::vector<Real>()>;
   std::function<std::optional<Resize>(Real t, const Real* y, const CarriedData& carried)> after_step;
+  // Optional, with after_step: true when after_step would change the particles at (t, y); a
+  // stepper with particles on steps of their own then synchronises them at its next event
+  // (StepperOptions::synchronise) instead of at the end of its top step.
+  std::function<bool(Real t, const Real* y)> event_due;
   // Optional, with after_step: on a restart, the system takes the checkpoint's species counts
   // and returns its layout (which must then match the checkpoint's).
   std::function<StateLayout(const Checkpoint& c)> restart_layout;

@@ -29,6 +29,11 @@ struct SinkEventLog {
 // The sinks of state y (accretion radius params.accretion_radius each).
 std::vector<Sink> sinks_of(const SpmhdScheme<3>& scheme, const Real* y, Real accretion_radius);
 
+// Whether sink_events at y would change the particles: gas it would accrete (the same test), or
+// a candidate for a new sink — a gas particle denser than rho_sink at the scheme's last
+// evaluation (of y; the creation checks that could still refuse it need a new evaluation).
+bool sink_event_due(const SpmhdScheme<3>& scheme, const Real* y, const SinkParams& params);
+
 std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& scheme, Real t, const Real* y, const SinkParams& params,
                                                  SinkEventLog& log);
 

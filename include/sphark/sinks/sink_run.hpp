@@ -31,6 +31,8 @@ class SinkRunSupport {
   // SceneRun::after_step: sink_events at (t, y). created() says whether it created a sink.
   std::optional<TimeLoopHooks::Resize> after_step(SpmhdScheme<3>& scheme, Real t, const Real* y);
   bool created() const { return created_; }
+  // SceneRun::event_due: after_step at (t, y) could change the particles (sink_event_due).
+  bool event_due(const SpmhdScheme<3>& scheme, const Real* y) const;
   // SceneRun::saved_numbers: sink_creations, accreted_particles, first_sink_time.
   std::vector<std::pair<std::string, Real*>> saved_numbers();
   // SceneRun::restart_layout: the scheme takes the checkpoint's species counts (gas: the first

@@ -28,6 +28,7 @@ class CollapseRun final : public SceneRun {
   std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
                                                   const TimeLoopHooks::CarriedData& carried) override;
   StateLayout restart_layout(const Checkpoint& c) override;
+  bool event_due(Real, const Real* y) override { return sinks_.event_due(cloud_.scheme, y); }
   void settings(TimeLoopSettings& s) override;
 
   // After the run: the step levels and the column-density maps of the last frame (its state).

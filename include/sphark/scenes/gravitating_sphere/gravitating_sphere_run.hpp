@@ -36,6 +36,7 @@ class GravitatingSphereRun final : public SceneRun {
   std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
                                                   const TimeLoopHooks::CarriedData& carried) override;
   StateLayout restart_layout(const Checkpoint& c) override;
+  bool event_due(Real, const Real* y) override { return sinks_.event_due(sphere_.scheme, y); }
 
   GravitatingSphere& sphere() { return sphere_; }
   const SinkEventLog& sink_log() const { return sinks_.log(); }
