@@ -8,8 +8,9 @@
 //   end of i's step:    ẇ_i = f_i(t, x, w*) for the active set  (OdeSystem::rhs_subset)
 //                       w_i += dt_i/2 ẇ_i                       (kick)
 // Wake-up (the time-step limiter of Saitoh & Makino 2009, ApJ 697 L99, as Phantom's): at every
-// event a particle whose stable step (at the predicted state) has fallen below its current step
-// ends that step early, at the event: its drift and start kick are cut back to the elapsed part
+// event a particle whose stable step (at the last event, after its evaluation: one evaluation of
+// every particle's stable step per event) has fallen below its current step ends that step
+// early, at the event: its drift and start kick are cut back to the elapsed part
 // e of the step (x -= e (dt_i - e)/2 ẇ_old, w -= (dt_i - e)/2 ẇ_old), it is evaluated with the
 // ending particles and kicked by e/2 ẇ_new, then binned afresh (a system that wants neighbours'
 // steps to bound each other folds that into particle_stable_dt).
@@ -75,7 +76,7 @@ class BlockLeapfrogStepper final : public Stepper {
   void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
   std::vector<std::size_t> ending_at(std::int64_t tick) const;
   void predict(std::int64_t tick);
-  std::vector<std::size_t> woken_at(Real t, std::int64_t tick, const std::vector<std::size_t>& ending);
+  std::vector<std::size_t> woken_at(std::int64_t tick, const std::vector<std::size_t>& ending) const;
   std::vector<std::size_t> all_but(const std::vector<std::size_t>& ending) const;
   void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
   void evaluate(Real t, const std::vector<std::size_t>& active);
@@ -218,12 +219,10 @@ void BlockLeapfrogStepper::predict(std::int64_t tick) {
   }
 }
 
-// The particles, not ending at `tick`, whose stable step at the predicted state is below their
-// current step (ascending).
-std::vector<std::size_t> BlockLeapfrogStepper::woken_at(Real t, std::int64_t tick, const std::vector<std::size_t>& ending) {
-  stable_.assign(level_.size(), 0);
-  if (system_.particle_stable_dt(t, eval_.data(), dy_.data(), stable_.data()) != 0)
-    throw CycleFailure("particle_stable_dt failed at t=" + at_time(t) + ": " + system_.last_error());
+// The particles, not ending at `tick`, whose stable step is below their current step
+// (ascending), from the stable steps of the last rebin (at the previous event, after its
+// evaluation): one evaluation of particle_stable_dt per event, the wake-up one event later.
+std::vector<std::size_t> BlockLeapfrogStepper::woken_at(std::int64_t tick, const std::vector<std::size_t>& ending) const {
   std::vector<std::size_t> woken;
   std::size_t e = 0;
   for (std::size_t i = 0; i < level_.size(); ++i) {
@@ -299,7 +298,7 @@ Real BlockLeapfrogStepper::cycle(Real top, Real t_end) {
     const bool last = tick == kTicks || synchronise;
     const std::vector<std::size_t> woken = tick == kTicks ? std::vector<std::size_t>{}
                                            : synchronise  ? all_but(ending)
-                                                          : woken_at(t, tick, ending);
+                                                          : woken_at(tick, ending);
     std::vector<std::size_t> active = ending;
     if (!woken.empty()) {
       cut_back(woken, tick);
