@@ -20,8 +20,8 @@
 // needs a shorter step, a longer one only where that step's grid aligns with the current tick.
 // All levels meet at the end of the cycle; there (t, y) is synchronised and returned.
 // Synchronising early (StepperOptions::synchronise said so at the cycle's start or its last
-// event): at the next event every particle not ending its step there is cut back as a woken one, evaluated and
-// kicked, and the cycle ends there; the next one bins every particle afresh.
+// event): at the next event every particle not ending its step there is cut back as a woken
+// one, evaluated and kicked, and the cycle ends there; the next one bins every particle afresh.
 //
 // With one level for all particles this is the global "leapfrog" KDK. Across levels, linear
 // momentum is conserved only to the time-stepping error, not to round-off: a pair force is
@@ -71,13 +71,14 @@ class BlockLeapfrogStepper final : public Stepper {
  private:
   void index_entries();
   std::int64_t length(int level) const { return kTicks >> level; }
-  Real cycle(Real top, Real t_end);  // the time it ended at
+  void cycle(Real top, Real t_end);  // sets t_ (earlier than t_end when synchronised early)
   void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
   void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
   std::vector<std::size_t> ending_at(std::int64_t tick) const;
   void predict(std::int64_t tick);
   std::vector<std::size_t> woken_at(std::int64_t tick, const std::vector<std::size_t>& ending) const;
-  std::vector<std::size_t> all_but(const std::vector<std::size_t>& ending) const;
+  template <class Keep>
+  std::vector<std::size_t> others(const std::vector<std::size_t>& ending, Keep keep) const;
   void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
   void evaluate(Real t, const std::vector<std::size_t>& active);
   void count(const std::vector<std::size_t>& active);
@@ -219,29 +220,25 @@ void BlockLeapfrogStepper::predict(std::int64_t tick) {
   }
 }
 
-// The particles, not ending at `tick`, whose stable step is below their current step
-// (ascending), from the stable steps of the last rebin (at the previous event, after its
-// evaluation): one evaluation of particle_stable_dt per event, the wake-up one event later.
-std::vector<std::size_t> BlockLeapfrogStepper::woken_at(std::int64_t tick, const std::vector<std::size_t>& ending) const {
-  std::vector<std::size_t> woken;
+// The particles not in `ending` (ascending) for which keep(i) holds.
+template <class Keep>
+std::vector<std::size_t> BlockLeapfrogStepper::others(const std::vector<std::size_t>& ending, Keep keep) const {
+  std::vector<std::size_t> out;
   std::size_t e = 0;
   for (std::size_t i = 0; i < level_.size(); ++i) {
     while (e < ending.size() && ending[e] < i) ++e;
-    if (e < ending.size() && ending[e] == i) continue;
-    if (start_[i] + length(level_[i]) > tick && opts_.cfl_safety * stable_[i] < bins_.level_dt(level_[i])) woken.push_back(i);
+    if (!(e < ending.size() && ending[e] == i) && keep(i)) out.push_back(i);
   }
-  return woken;
+  return out;
 }
 
-// Every particle not in `ending` (ascending): all of them end their steps at a synchronising event.
-std::vector<std::size_t> BlockLeapfrogStepper::all_but(const std::vector<std::size_t>& ending) const {
-  std::vector<std::size_t> rest;
-  std::size_t e = 0;
-  for (std::size_t i = 0; i < level_.size(); ++i) {
-    while (e < ending.size() && ending[e] < i) ++e;
-    if (!(e < ending.size() && ending[e] == i)) rest.push_back(i);
-  }
-  return rest;
+// The particles, not ending at `tick`, whose stable step is below their current step, from the
+// stable steps of the last rebin (at the previous event, after its evaluation): one evaluation of
+// particle_stable_dt per event, the wake-up one event later.
+std::vector<std::size_t> BlockLeapfrogStepper::woken_at(std::int64_t tick, const std::vector<std::size_t>& ending) const {
+  return others(ending, [&](std::size_t i) {
+    return start_[i] + length(level_[i]) > tick && opts_.cfl_safety * stable_[i] < bins_.level_dt(level_[i]);
+  });
 }
 
 // A woken particle's step is cut to its elapsed part e: the drift and the start kick it got with
@@ -272,7 +269,7 @@ void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& acti
 
 // One top step: kicks at every particle's step start and end, drifts of all at every event;
 // ended early at an event where StepperOptions::synchronise asks for it.
-Real BlockLeapfrogStepper::cycle(Real top, Real t_end) {
+void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   tick_dt_ = std::ldexp(top, -kMaxLevel);
   w_ = y_;
   eval_ = y_;
@@ -297,7 +294,7 @@ Real BlockLeapfrogStepper::cycle(Real top, Real t_end) {
     predict(tick);
     const bool last = tick == kTicks || synchronise;
     const std::vector<std::size_t> woken = tick == kTicks ? std::vector<std::size_t>{}
-                                           : synchronise  ? all_but(ending)
+                                           : synchronise  ? others(ending, [](std::size_t) { return true; })
                                                           : woken_at(tick, ending);
     std::vector<std::size_t> active = ending;
     if (!woken.empty()) {
@@ -327,7 +324,6 @@ Real BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   y_ = w_;
   t_ = t;
   last_dt_ = static_cast<Real>(tick) * tick_dt_;
-  return t;
 }
 
 AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
@@ -344,7 +340,7 @@ AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
     if (top != bins_.dt_top()) bins_ = LevelPartition(top, kMaxLevel, opts_.partition_hysteresis), fresh_ = true;
     AdvanceStatus status = AdvanceStatus::Stepped;
     try {
-      cycle(top, landing ? t_out : t_ + top);  // sets t_: earlier than that when synchronised early
+      cycle(top, landing ? t_out : t_ + top);
     } catch (const CycleInterrupted&) {
       status = AdvanceStatus::Interrupted;
     } catch (...) {
