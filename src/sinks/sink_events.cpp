@@ -62,7 +62,7 @@ TimeLoopHooks::Resize apply(SpmhdScheme<3>& s, const Real* y, const SinkUpdate& 
     Eigen::Map<Vec<3>>(y_new.data() + to.offset(Species::Sink, Field::Spin) + 3 * k) = sk.spin;
   }
   s.change_particles(kept, new_sinks);
-  return {to, std::move(y_new), {}, {}};
+  return {to, std::move(y_new), {}, {}, {}};
 }
 
 }  // namespace

@@ -24,13 +24,27 @@
 namespace sphark {
 
 template <int D, class K>
-void SpmhdScheme<D, K>::gravitational_zeta() {
+void SpmhdScheme<D, K>::gravitational_zeta(const std::vector<std::uint32_t>* only) {
   if constexpr (D == 3) {
     const NeighbourList& L = ns_.list();
     const Real* x = x_.data();
     const MinimumImage<3> image(ns_.box());  // x_a - x_b as ns_.separation, without its divisions
+    // With `only` (the active rows of a subset evaluation): the slots those rows read, themselves
+    // and their list neighbours; the others keep their last values, read by no active row.
+    zeta_slots_.clear();
+    if (only) {
+      zeta_needed_.assign(n_, 0);
+      for (std::uint32_t a : *only) {
+        zeta_needed_[a] = 1;
+        for (std::size_t k = L.begin(a); k < L.end(a); ++k) zeta_needed_[L.indices[k]] = 1;
+      }
+      for (std::size_t a = 0; a < n_; ++a)
+        if (zeta_needed_[a]) zeta_slots_.push_back(static_cast<std::uint32_t>(a));
+    }
+    const std::size_t rows = only ? zeta_slots_.size() : n_;
 #pragma omp parallel for schedule(dynamic, 64)
-    for (std::size_t a = 0; a < n_; ++a) {
+    for (std::size_t i = 0; i < rows; ++i) {
+      const std::size_t a = only ? zeta_slots_[i] : i;
       const Real ha = h_[a], reach2 = (K::support * ha) * (K::support * ha);
       Real sum = zeta_init<K>(ms_[a], ha);
       for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
@@ -75,7 +89,7 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
       gravity_h_[p] = h_[s];
     }
     potential_energy_ = gravity_->compute(gravity_sources(), gravity_acc_.data(), gravity_potential_.data());
-    gravitational_zeta();
+    gravitational_zeta(only);
     const Real* x = x_.data();
     const MinimumImage<3> image(ns_.box());
     kernel_scale_.resize(n_);  // each particle's f_over_r_scale, once instead of once per pair
@@ -119,7 +133,7 @@ Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
 }
 
 #define SPHARK_SPMHD_GRAVITY(D, K)                          \
-  template void SpmhdScheme<D, K>::gravitational_zeta();   \
+  template void SpmhdScheme<D, K>::gravitational_zeta(const std::vector<std::uint32_t>*);   \
   template std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t, const MinimumImage<D>&,            \
                                                                 std::vector<std::uint32_t>&) const;            \
   template void SpmhdScheme<D, K>::gravity_pass(Real*, const std::vector<std::uint32_t>*); \

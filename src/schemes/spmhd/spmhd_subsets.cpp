@@ -58,18 +58,23 @@ template <int D, class K>
 int SpmhdScheme<D, K>::particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) {
   if (halo_) throw std::logic_error("SpmhdScheme::particle_stable_dt: not for a distributed scheme");
   if (stable_steps(t, y, ydot, courant_steps_, force_steps_) != 0) return 1;  // error_ says why
-  std::vector<Real>& own = courant_steps_;
+  std::vector<Real>& own = courant_steps_;  // particle order
   for (std::size_t a = 0; a < n_; ++a) own[a] = std::min(courant_steps_[a], force_steps_[a]);
+  std::vector<Real>& own_of_slot = force_steps_;  // reused: slot order, read along the rows
+  for (std::size_t a = 0; a < n_; ++a) own_of_slot[a] = own[perm_[a]];
   const NeighbourList& L = ns_.list();  // slots; stable_steps prepared the lists for y
+  const MinimumImage<D> image(ns_.box());
+  const Real* x = x_.data();
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::size_t a = 0; a < n_; ++a) {
     Real least = std::numeric_limits<Real>::infinity();
     for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
       const std::size_t b = L.indices[k];
+      if (!(own_of_slot[b] < least)) continue;  // cannot lower the minimum: no distance needed
       const Real reach = K::support * std::max(h_[a], h_[b]);
-      if (ns_.separation(x_.data(), a, b).squaredNorm() < reach * reach) least = std::min(least, own[perm_[b]]);
+      if (image(x + D * a, x + D * b).squaredNorm() < reach * reach) least = own_of_slot[b];
     }
-    dt[perm_[a]] = std::min(own[perm_[a]], kNeighbourStepFactor * least);
+    dt[perm_[a]] = std::min(own_of_slot[a], kNeighbourStepFactor * least);
   }
   // A sink pulls on every gas particle, hardest on the closest ones, which orbit it on the
   // shortest steps: it takes the shortest gas step (as in the global leapfrog, whose one step

@@ -208,7 +208,7 @@ class SpmhdScheme final : public OdeSystem {
   void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
-  void gravitational_zeta();                       // zeta_a / Omega_a of the grad-h term
+  void gravitational_zeta(const std::vector<std::uint32_t>* only);  // zeta_a / Omega_a of the grad-h term (slots `only` read)
   Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
   Real force_step(std::size_t slot, const Real* ydot) const;  // force_courant sqrt(h / |dv/dt|) of one slot
   // C h / v_sig of one slot, v: velocities in slot order (v_) or null (+inf without a signal speed;
@@ -302,6 +302,8 @@ class SpmhdScheme final : public OdeSystem {
   std::optional<BarotropicEos> eos_;  // opt_.barotropic
   std::unique_ptr<SelfGravity> gravity_;
   std::vector<Real> gravity_x_, gravity_h_, gravity_acc_, gravity_potential_, zeta_over_omega_;
+  std::vector<std::uint8_t> zeta_needed_;   // gravitational_zeta of a subset
+  std::vector<std::uint32_t> zeta_slots_;
   std::vector<Real> kernel_scale_;  // K::f_over_r_scale(h) per slot (gravity_pass)
   std::size_t entries_within_reach(std::size_t a, const MinimumImage<D>& image, std::vector<std::uint32_t>& near) const;
   GravitySources gravity_sources() const { return {gravity_x_.data(), m_.data(), gravity_h_.data(), n_}; }
