@@ -1,6 +1,9 @@
 // Direct summation (see sphark/gravity/direct_gravity.hpp).
 #include "sphark/gravity/direct_gravity.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include "sphark/gravity/kernel_softening.hpp"
 #include "sphark/kernels/kernels.hpp"
 #include "gravity_kernels.hpp"
@@ -33,9 +36,15 @@ template <class K>
 Real DirectGravity<K>::compute(const GravitySources& src, Real* acceleration, Real* potential) {
   const auto n = static_cast<std::ptrdiff_t>(src.n);
 #pragma omp parallel for schedule(dynamic, 16)
-  for (std::ptrdiff_t a = 0; a < n; ++a)
+  for (std::ptrdiff_t a = 0; a < n; ++a) {
+    if (src.wanted && !src.wanted[a]) {
+      std::fill_n(acceleration + 3 * a, 3, std::numeric_limits<Real>::quiet_NaN());
+      potential[a] = std::numeric_limits<Real>::quiet_NaN();
+      continue;
+    }
     direct_field_at<K>(src, static_cast<std::size_t>(a), G_, acceleration + 3 * a, potential + a);
-  return potential_energy(src.m, potential, src.n);
+  }
+  return src.wanted ? std::numeric_limits<Real>::quiet_NaN() : potential_energy(src.m, potential, src.n);
 }
 
 Real potential_energy(const Real* m, const Real* potential, std::size_t n) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <omp.h>
 #include <stdexcept>
 
@@ -55,9 +56,9 @@ Real TreeGravity<K>::compute(const GravitySources& src, Real* acceleration, Real
   {
     std::uint32_t* inside = inside_[static_cast<std::size_t>(omp_get_thread_num())].data();
 #pragma omp for schedule(dynamic, 4)
-    for (std::ptrdiff_t k = 0; k < nl; ++k) evaluate_leaf(leaves[k], acceleration, potential, inside);
+    for (std::ptrdiff_t k = 0; k < nl; ++k) evaluate_leaf(leaves[k], src.wanted, acceleration, potential, inside);
   }
-  return potential_energy(src.m, potential, src.n);
+  return src.wanted ? std::numeric_limits<Real>::quiet_NaN() : potential_energy(src.m, potential, src.n);
 }
 
 // Step 1: every node's expansion from its far partners, in list order.
@@ -139,13 +140,19 @@ void TreeGravity<K>::merge_near_runs() {
 
 // Step 3: the particles of one leaf, written to their input slots.
 template <class K>
-void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential,
-                                   std::uint32_t* inside) const {
+void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, const std::uint8_t* wanted, Real* acceleration,
+                                   Real* potential, std::uint32_t* inside) const {
   const TreeNode& A = tree_.nodes()[leaf];
   const PartnerLists& near = walk_.near();
   const Real *x = tree_.x(), *y = tree_.y(), *z = tree_.z(), *m = tree_.m(), *h = tree_.h();
   const gravity_detail::ParticleArrays arrays{x, y, z, m, h, tree_.h_inv()};
   for (std::uint32_t a = A.begin; a < A.end; ++a) {
+    const std::uint32_t i = tree_.order()[a];
+    if (wanted && !wanted[i]) {  // a source only
+      acceleration[3 * i] = acceleration[3 * i + 1] = acceleration[3 * i + 2] = std::numeric_limits<Real>::quiet_NaN();
+      potential[i] = std::numeric_limits<Real>::quiet_NaN();
+      continue;
+    }
     const Real xa[3] = {x[a], y[a], z[a]};
     const Real d[3] = {xa[0] - A.com[0], xa[1] - A.com[1], xa[2] - A.com[2]};
     Real value, grad[3];
@@ -158,7 +165,6 @@ void TreeGravity<K>::evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real*
     gravity_detail::add_softened_list<K>(arrays, inside, n, xa, h[a], arrays.h_inv[a], softened);
     s.ax -= newtonian.fx + softened.fx, s.ay -= newtonian.fy + softened.fy, s.az -= newtonian.fz + softened.fz;
     s.pot += softened.pot - newtonian.pot;
-    const std::uint32_t i = tree_.order()[a];
     acceleration[3 * i] = opt_.G * s.ax;
     acceleration[3 * i + 1] = opt_.G * s.ay;
     acceleration[3 * i + 2] = opt_.G * s.az;

@@ -13,6 +13,8 @@
 #include <memory>
 #include <string_view>
 
+#include <cstdint>
+
 #include "sphark/core/types.hpp"
 
 namespace sphark {
@@ -23,6 +25,10 @@ struct GravitySources {
   const Real* m = nullptr;
   const Real* h = nullptr;  // softening lengths (the SPH h); h = 0: unsoftened, no self term
   std::size_t n = 0;
+  // Per particle, 1 = its field is wanted (the active particles of a multirate evaluation);
+  // nullptr: all. Every particle is still a source; the unwanted ones' acceleration and potential
+  // are set to NaN (not computed), and compute() returns a NaN potential energy.
+  const std::uint8_t* wanted = nullptr;
 };
 
 enum class GravitySolver { Direct, Tree };

@@ -48,7 +48,8 @@ class TreeGravity final : public SelfGravity {
   void far_field_expansions();
   void pass_expansions_down();
   void merge_near_runs();
-  void evaluate_leaf(std::uint32_t leaf, Real* acceleration, Real* potential, std::uint32_t* inside) const;
+  void evaluate_leaf(std::uint32_t leaf, const std::uint8_t* wanted, Real* acceleration, Real* potential,
+                     std::uint32_t* inside) const;
 
   GravityOptions opt_;
   GravityTree tree_;

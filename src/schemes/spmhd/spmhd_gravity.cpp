@@ -88,7 +88,13 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
       std::copy_n(x_.data() + 3 * s, 3, gravity_x_.data() + 3 * p);
       gravity_h_[p] = h_[s];
     }
-    potential_energy_ = gravity_->compute(gravity_sources(), gravity_acc_.data(), gravity_potential_.data());
+    GravitySources sources = gravity_sources();
+    if (only) {  // the field at the active rows only (particle order); the others' NaN, the energy NaN
+      gravity_wanted_.assign(n_, 0);
+      for (std::uint32_t a : *only) gravity_wanted_[perm_[a]] = 1;
+      sources.wanted = gravity_wanted_.data();
+    }
+    potential_energy_ = gravity_->compute(sources, gravity_acc_.data(), gravity_potential_.data());
     gravitational_zeta(only);
     const Real* x = x_.data();
     const MinimumImage<3> image(ns_.box());

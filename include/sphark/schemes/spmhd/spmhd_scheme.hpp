@@ -302,7 +302,7 @@ class SpmhdScheme final : public OdeSystem {
   std::optional<BarotropicEos> eos_;  // opt_.barotropic
   std::unique_ptr<SelfGravity> gravity_;
   std::vector<Real> gravity_x_, gravity_h_, gravity_acc_, gravity_potential_, zeta_over_omega_;
-  std::vector<std::uint8_t> zeta_needed_;   // gravitational_zeta of a subset
+  std::vector<std::uint8_t> zeta_needed_, gravity_wanted_;  // gravitational_zeta, the tree's targets of a subset
   std::vector<std::uint32_t> zeta_slots_;
   std::vector<Real> kernel_scale_;  // K::f_over_r_scale(h) per slot (gravity_pass)
   std::size_t entries_within_reach(std::size_t a, const MinimumImage<D>& image, std::vector<std::uint32_t>& near) const;
