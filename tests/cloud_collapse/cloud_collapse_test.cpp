@@ -284,3 +284,36 @@ TEST(StepLevels, CountsPerPowerOfTwoLevelAndTheBlockSpeedup) {
 
 }  // namespace
 }  // namespace sphark
+
+namespace sphark {
+namespace {
+
+// The multirate interface on the collapse itself (periodic box, cell-ordered slots: slot and
+// particle order differ, unlike the clump of tests/spmhd/spmhd_subsets_test.cpp): a subset
+// evaluated right after a full evaluation at another state equals, on its particles, the full
+// RHS at its own state bit for bit — every mask it builds (the tree's targets, the zeta rows)
+// maps slots to particles rightly.
+TEST(CloudSubsets, ASubsetEqualsTheFullRhsOnItsParticles) {
+  CloudCollapse cloud(small(1500));
+  SpmhdScheme<3>& s = cloud.scheme;
+  const std::vector<Real>& y = cloud.y0;
+  std::vector<Real> moved = y, scratch(y.size()), sub(y.size()), full(y.size());
+  const std::size_t x0 = s.layout().offset(Field::Position);
+  for (std::size_t k = 0; k < 3 * s.particles(); ++k) moved[x0 + k] *= 0.999;
+  ASSERT_EQ(s.rhs(0, moved.data(), scratch.data()), 0) << s.last_error();
+  std::vector<std::size_t> active;
+  for (std::size_t i = 3; i < s.num_particles(); i += 7) active.push_back(i);
+  ASSERT_EQ(s.rhs_subset(0, y.data(), active, sub.data()), 0) << s.last_error();
+  ASSERT_EQ(s.rhs(0, y.data(), full.data()), 0) << s.last_error();
+  const std::vector<std::size_t> owner = s.entry_particles();
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < y.size(); ++k)
+    if (owner[k] % 7 == 3) {
+      EXPECT_EQ(sub[k], full[k]) << "entry " << k;
+      ++compared;
+    }
+  EXPECT_GT(compared, y.size() / 10);
+}
+
+}  // namespace
+}  // namespace sphark
