@@ -108,7 +108,7 @@ TEST(BlockSynchronise, TheRunGoesOnFromTheSynchronisedStateAsARestartWouldAndSta
     e_sync = std::max(e_sync, std::abs(y[k] - exact[k])), e_plain = std::max(e_plain, std::abs(yp[k] - exact[k]));
   std::printf("error at t = 1: synchronised once %.3e, never %.3e\n", e_sync, e_plain);
   EXPECT_GT(e_sync, 0);
-  EXPECT_LT(e_sync, 1.5 * e_plain);
+  EXPECT_LT(e_sync, 1.01 * e_plain);  // measured 1.0029: one synchronisation barely changes the error
 }
 
 }  // namespace

@@ -48,32 +48,6 @@ TEST(SpmhdSubsets, TwoComplementarySubsetsAddUpToTheFullRhsBitForBit) {
   EXPECT_GT(nonzero, c.y.size() / 2);
 }
 
-// A subset evaluated right after a full evaluation at another state (as block steps do: every
-// event moves the particles) equals, for its particles, the full RHS at its own state that
-// follows it (same lists, the density memoised on the positions): nothing a subset row reads —
-// e.g. the neighbours' zeta of the grad-h gravity term, computed for the active rows and their
-// neighbours only — is left over from the other state.
-TEST(SpmhdSubsets, ASubsetAfterAFullEvaluationElsewhereReadsNothingStale) {
-  Clump c = clump();
-  SpmhdScheme<3>& s = *c.scheme;
-  const std::size_t np = s.num_particles(), x0 = s.layout().offset(Field::Position);
-  std::vector<Real> moved = c.y, scratch(c.y.size()), expected(c.y.size()), sub(c.y.size());
-  for (std::size_t k = 0; k < 3 * s.particles(); ++k) moved[x0 + k] *= 1.01;  // a slightly expanded clump
-  ASSERT_EQ(s.rhs(0, moved.data(), scratch.data()), 0) << s.last_error();
-  std::vector<std::size_t> active;
-  for (std::size_t i = 0; i < np; i += 7) active.push_back(i);
-  ASSERT_EQ(s.rhs_subset(0, c.y.data(), active, sub.data()), 0) << s.last_error();
-  ASSERT_EQ(s.rhs(0, c.y.data(), expected.data()), 0) << s.last_error();
-  const std::vector<std::size_t> owner = s.entry_particles();
-  std::size_t compared = 0;
-  for (std::size_t k = 0; k < c.y.size(); ++k)
-    if (owner[k] % 7 == 0) {
-      EXPECT_EQ(sub[k], expected[k]) << "entry " << k;
-      ++compared;
-    }
-  EXPECT_GT(compared, c.y.size() / 10);
-}
-
 TEST(SpmhdSubsets, ParticleStableStepsAreWhatMaxStableDtMinimises) {
   Clump c = clump();
   SpmhdScheme<3>& s = *c.scheme;
