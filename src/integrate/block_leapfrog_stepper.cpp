@@ -19,9 +19,14 @@
 // w_half + dt/2 ẇ_n, as in "leapfrog"). An ending particle takes a new level at once if it
 // needs a shorter step, a longer one only where that step's grid aligns with the current tick.
 // All levels meet at the end of the cycle; there (t, y) is synchronised and returned.
-// Synchronising early (StepperOptions::synchronise said so at the cycle's start or its last
-// event): at the next event every particle not ending its step there is cut back as a woken
-// one, evaluated and kicked, and the cycle ends there; the next one bins every particle afresh.
+// Particles removed inside the cycle (StepperOptions::remove_active: gas accreted onto a sink,
+// or made into one, among the active particles, as Phantom's ptmass.F90 does with individual
+// steps): after an event's kicks the system may remove some of that event's active particles,
+// whose every entry is then at the event's time; the others' entries and derivatives, levels
+// and step starts move with them, a new particle (a sink) is evaluated there, and the cycle goes
+// on. No other evaluation is added: the next kicks use the last derivatives, as Phantom's do.
+// StepperOptions::wake_next names particles to be woken at the next event (a sink candidate's
+// neighbourhood, which must be all active for the sink to be made).
 //
 // With one level for all particles this is the global "leapfrog" KDK. Across levels, linear
 // momentum is conserved only to the time-stepping error, not to round-off: a pair force is
@@ -32,6 +37,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include "sphark/core/profile.hpp"
@@ -71,17 +77,18 @@ class BlockLeapfrogStepper final : public Stepper {
  private:
   void index_entries();
   std::int64_t length(int level) const { return kTicks >> level; }
-  void cycle(Real top, Real t_end);  // sets t_ (earlier than t_end when synchronised early)
+  void cycle(Real top, Real t_end);  // sets t_ = t_end
   void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
   void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
   std::vector<std::size_t> ending_at(std::int64_t tick) const;
   void predict(std::int64_t tick);
-  std::vector<std::size_t> woken_at(std::int64_t tick, const std::vector<std::size_t>& ending) const;
-  template <class Keep>
-  std::vector<std::size_t> others(const std::vector<std::size_t>& ending, Keep keep) const;
+  std::vector<std::size_t> woken_at(std::int64_t tick) const;
   void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
   void evaluate(Real t, const std::vector<std::size_t>& active);
   void count(const std::vector<std::size_t>& active);
+  void reindex();
+  void remove(Real t, std::vector<std::size_t>& active);
+  void take(Real t, StepperOptions::Removal& r, std::vector<std::size_t>& active);
 
   OdeSystem& system_;
   const StepperOptions opts_;
@@ -99,7 +106,8 @@ class BlockLeapfrogStepper final : public Stepper {
   bool fresh_ = true;  // the next cycle bins afresh (first cycle, or a new top step)
   std::vector<LevelStats> level_stats_;
   long events_ = 0, rhs_evals_ = 1, wakeups_ = 0;
-  std::vector<Real> old_dy_;  // the woken particles' derivatives before their early evaluation
+  bool removed_ = false;  // particles removed inside the current cycle (remove_active)
+  std::vector<std::size_t> wake_next_;  // ascending: to be woken at the next event (wake_next)
   Real last_dt_ = 0;
   bool failed_ = false;
   std::string failure_;
@@ -112,6 +120,7 @@ BlockLeapfrogStepper::BlockLeapfrogStepper(OdeSystem& system, const StepperOptio
       level_(system.num_particles(), 0), start_(system.num_particles(), 0),
       bins_(top_, kMaxLevel, opts.partition_hysteresis), level_stats_(kMaxLevel + 1) {
   index_entries();
+  if (opts.remove_active && !opts.undo_removals) throw std::invalid_argument("leapfrog-blocks: remove_active without undo_removals");
   const std::vector<Real>& r = opts.resume_data;
   if (!r.empty()) {  // a restart: the derivative and levels of the run being continued
     if (r.size() != n_ + level_.size() + 1)
@@ -133,7 +142,7 @@ std::vector<Real> BlockLeapfrogStepper::resume_data() const {
   if (failed_) return {};
   std::vector<Real> r = dy_;
   r.insert(r.end(), level_.begin(), level_.end());
-  r.push_back(fresh_ || bins_.dt_top() != top_ ? 1 : 0);  // after a shortened or synchronised step: bin afresh
+  r.push_back(fresh_ || bins_.dt_top() != top_ ? 1 : 0);  // after a shortened step: bin afresh
   return r;
 }
 
@@ -149,12 +158,17 @@ void BlockLeapfrogStepper::index_entries() {
       throw std::logic_error("entry_particles: particle " + std::to_string(i) + " owns no kicked state entry");
 }
 
+// The system's sizes and offsets, and its entries' particles (after its particles changed).
+void BlockLeapfrogStepper::reindex() {
+  n_ = system_.size(), np_ = system_.position_size(), xp_ = system_.position_offset(), vp_ = system_.velocity_offset();
+  index_entries();
+}
+
 void BlockLeapfrogStepper::resize(const Resized& state) {
   if (state.y == nullptr) throw std::invalid_argument("resize: no state");
-  n_ = system_.size(), np_ = system_.position_size(), xp_ = system_.position_offset(), vp_ = system_.velocity_offset();
+  reindex();
   y_.assign(state.y, state.y + n_);
   dy_.assign(n_, 0);
-  index_entries();
   level_.assign(entries_.size(), 0);
   start_.assign(entries_.size(), 0);
   fresh_ = true;
@@ -220,31 +234,22 @@ void BlockLeapfrogStepper::predict(std::int64_t tick) {
   }
 }
 
-// The particles not in `ending` (ascending) for which keep(i) holds.
-template <class Keep>
-std::vector<std::size_t> BlockLeapfrogStepper::others(const std::vector<std::size_t>& ending, Keep keep) const {
+// The particles whose step goes on past `tick` and whose stable step is below it, from the stable
+// steps of the last rebin (at the previous event, after its evaluation): one evaluation of
+// particle_stable_dt per event, the wake-up one event later; and those StepperOptions::wake_next
+// named at the previous event.
+std::vector<std::size_t> BlockLeapfrogStepper::woken_at(std::int64_t tick) const {
   std::vector<std::size_t> out;
-  std::size_t e = 0;
-  for (std::size_t i = 0; i < level_.size(); ++i) {
-    while (e < ending.size() && ending[e] < i) ++e;
-    if (!(e < ending.size() && ending[e] == i) && keep(i)) out.push_back(i);
-  }
+  for (std::size_t i = 0; i < level_.size(); ++i)
+    if (start_[i] + length(level_[i]) > tick && (opts_.cfl_safety * stable_[i] < bins_.level_dt(level_[i]) ||
+                                                 std::binary_search(wake_next_.begin(), wake_next_.end(), i)))
+      out.push_back(i);
   return out;
 }
 
-// The particles, not ending at `tick`, whose stable step is below their current step, from the
-// stable steps of the last rebin (at the previous event, after its evaluation): one evaluation of
-// particle_stable_dt per event, the wake-up one event later.
-std::vector<std::size_t> BlockLeapfrogStepper::woken_at(std::int64_t tick, const std::vector<std::size_t>& ending) const {
-  return others(ending, [&](std::size_t i) {
-    return start_[i] + length(level_[i]) > tick && opts_.cfl_safety * stable_[i] < bins_.level_dt(level_[i]);
-  });
-}
-
 // A woken particle's step is cut to its elapsed part e: the drift and the start kick it got with
-// the step's full length become those of a step of length e (its old derivative kept in old_dy_).
+// the step's full length become those of a step of length e.
 void BlockLeapfrogStepper::cut_back(const std::vector<std::size_t>& woken, std::int64_t tick) {
-  old_dy_ = dy_;
   for (std::size_t i : woken) {
     const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_, full = static_cast<Real>(length(level_[i])) * tick_dt_;
     for (std::size_t k : entries_[i]) {
@@ -267,8 +272,70 @@ void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& acti
     for (std::size_t k : entries_[i]) dy_[k] = out_[k];
 }
 
-// One top step: kicks at every particle's step start and end, drifts of all at every event;
-// ended early at an event where StepperOptions::synchronise asks for it.
+// After an event's kicks: the system may remove active particles (StepperOptions::remove_active).
+void BlockLeapfrogStepper::remove(Real t, std::vector<std::size_t>& active) {
+  if (!opts_.remove_active) return;
+  std::optional<StepperOptions::Removal> r = opts_.remove_active(t, w_.data(), active);
+  if (!r) return;
+  removed_ = true;  // from here on a rollback needs undo_removals
+  take(t, *r, active);
+}
+
+// The new state of a removal: every per-entry and per-particle array follows the entries'
+// sources; `active` keeps its survivors. A particle whose entries have no source (a sink made of
+// removed ones) is new: it is evaluated at (t, y) and joins the active set on the deepest of its
+// levels (the next rebin bins it).
+void BlockLeapfrogStepper::take(Real t, StepperOptions::Removal& r, std::vector<std::size_t>& active) {
+  const std::size_t n_old = n_;
+  const std::vector<std::size_t> owner_old = owner_;
+  reindex();
+  if (r.y.size() != n_ || r.entry_source.size() != n_ || n_ > n_old)
+    throw std::logic_error("remove_active: " + std::to_string(r.y.size()) + " values and " +
+                           std::to_string(r.entry_source.size()) + " sources for a system of " + std::to_string(n_) +
+                           " entries (before: " + std::to_string(n_old) + ")");
+  constexpr std::size_t kNone = ~std::size_t{0}, kUnseen = kNone - 1;
+  std::vector<std::size_t> source(entries_.size(), kUnseen);  // new particle -> old particle (kNone: new)
+  for (std::size_t k = 0; k < n_; ++k) {
+    const std::size_t e = r.entry_source[k];
+    if (e != kNone && e >= n_old) throw std::logic_error("remove_active: entry source out of range");
+    const std::size_t from = e == kNone ? kNone : owner_old[e];
+    std::size_t& p = source[owner_[k]];
+    if (p != kUnseen && p != from) throw std::logic_error("remove_active: a particle made of two");
+    p = from;
+  }
+  const auto follow = [&](std::vector<Real>& a, bool new_from_y) {
+    std::vector<Real> b(n_);
+    for (std::size_t k = 0; k < n_; ++k) {
+      const std::size_t e = r.entry_source[k];
+      b[k] = e != kNone ? a[e] : new_from_y ? r.y[k] : 0;
+    }
+    a.swap(b);
+  };
+  follow(dy_, false);
+  follow(eval_, true);
+  w_ = std::move(r.y);
+  out_.assign(n_, 0);
+  std::vector<char> was_active(level_.size(), 0);
+  int deepest = 0;
+  for (std::size_t i : active) was_active[i] = 1, deepest = std::max(deepest, level_[i]);
+  std::vector<int> level(source.size(), deepest);
+  std::vector<std::int64_t> start(source.size(), 0);
+  std::vector<Real> stable(source.size(), 0);
+  std::vector<std::size_t> newcomers;
+  active.clear();
+  for (std::size_t p = 0; p < source.size(); ++p) {
+    if (source[p] == kNone) {
+      newcomers.push_back(p), active.push_back(p);
+      continue;
+    }
+    level[p] = level_[source[p]], start[p] = start_[source[p]], stable[p] = stable_[source[p]];
+    if (was_active[source[p]]) active.push_back(p);
+  }
+  level_.swap(level), start_.swap(start), stable_.swap(stable);
+  if (!newcomers.empty()) evaluate(t, newcomers);
+}
+
+// One top step: kicks at every particle's step start and end, drifts of all at every event.
 void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   tick_dt_ = std::ldexp(top, -kMaxLevel);
   w_ = y_;
@@ -278,9 +345,9 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   rebin(t_, all, 0, fresh_);
   fresh_ = false;
+  wake_next_.clear();
   kick(all, 0.5, w_);
   std::int64_t tick = 0;
-  bool synchronise = opts_.synchronise && opts_.synchronise(t_, y_.data());  // then the first event ends it
   Real t = t_;
   while (tick < kTicks) {
     std::int64_t next = kTicks;
@@ -292,11 +359,9 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
     t = next == kTicks ? t_end : t_ + static_cast<Real>(tick) * tick_dt_;
     const std::vector<std::size_t> ending = ending_at(tick);
     predict(tick);
-    const bool last = tick == kTicks || synchronise;
-    const std::vector<std::size_t> woken = tick == kTicks ? std::vector<std::size_t>{}
-                                           : synchronise  ? others(ending, [](std::size_t) { return true; })
-                                                          : woken_at(tick, ending);
-    std::vector<std::size_t> active = ending;
+    const bool last = tick == kTicks;
+    const std::vector<std::size_t> woken = last ? std::vector<std::size_t>{} : woken_at(tick);
+    std::vector<std::size_t> active = ending;  // (ascending)
     if (!woken.empty()) {
       cut_back(woken, tick);
       for (std::size_t i : woken) {  // their w* from the cut-back state: as at the end of a step of length e
@@ -316,11 +381,14 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
       for (std::size_t k : entries_[i]) w_[k] += 0.5 * e * dy_[k];
     }
     if (last) break;
-    synchronise = opts_.synchronise && opts_.synchronise(t, eval_.data());
+    remove(t, active);
+    wake_next_.clear();
+    if (opts_.wake_next)
+      for (std::size_t i : opts_.wake_next(t, w_.data(), active)) wake_next_.push_back(i);
+    std::sort(wake_next_.begin(), wake_next_.end());
     rebin(t, active, tick, false);
     kick(active, 0.5, w_);  // start of their next steps
   }
-  if (tick < kTicks) fresh_ = true;  // ended early: the next cycle bins afresh
   y_ = w_;
   t_ = t;
   last_dt_ = static_cast<Real>(tick) * tick_dt_;
@@ -333,6 +401,7 @@ AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
     const std::vector<Real> y_start = y_, dy_start = dy_;
     const std::vector<int> level_start = level_;
     const Real t_start = t_;
+    removed_ = false;
     // The last top step lands on t_out; within round-off of top_ it keeps top_'s levels.
     const bool landing = !(t_ + top_ * (1 + 1e-9) < t_out);
     const Real rest = t_out - t_;
@@ -349,6 +418,11 @@ AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
       status = AdvanceStatus::Failed;
     }
     if (status != AdvanceStatus::Stepped) {  // back to the last synchronised state
+      if (removed_) {  // the system's particles of that state
+        opts_.undo_removals();
+        reindex();
+        start_.assign(level_start.size(), 0);
+      }
       y_ = y_start, dy_ = dy_start, level_ = level_start, t_ = t_start;
       std::copy(y_.begin(), y_.end(), y);
       t = t_;

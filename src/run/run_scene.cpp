@@ -143,7 +143,13 @@ TimeLoopHooks hooks_of(SceneRun& run, SetupArming& arming, bool distributed) {
       return run.after_step(t, y, carried);
     };
     h.restart_layout = [&run](const Checkpoint& c) { return run.restart_layout(c); };
-    h.event_due = [&run](Real t, const Real* y) { return run.event_due(t, y); };
+    h.remove_active = [&run](Real t, const Real* y, const std::vector<std::size_t>& active) {
+      return run.remove_active(t, y, active);
+    };
+    h.restore_particles = [&run](const StateLayout& layout) { run.restore_particles(layout); };
+    h.wake_next = [&run](Real t, const Real* y, const std::vector<std::size_t>& active) {
+      return run.wake_next(t, y, active);
+    };
   }
   return h;
 }

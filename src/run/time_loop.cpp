@@ -52,12 +52,20 @@ void resize_stepper(Stepper& stepper, TimeLoopHooks::Resize& r, StateLayout& lay
 
 // Advances to t_out: in one call, or (with hooks.after_step) step by step, resizing the state and
 // the stepper when the hook asks for it; `progress` is called after each step.
+// `removed`: the layout after particles were removed inside the step (remove_active), whose
+// state, no longer than the old one, the step wrote into y.
 AdvanceStatus advance_to(Stepper& stepper, const TimeLoopHooks& hooks, Real t_out, std::vector<Real>& y, Real& t,
-                         StateLayout& layout, const std::function<void()>& progress) {
+                         StateLayout& layout, std::optional<StateLayout>& removed,
+                         const std::function<void()>& progress) {
   if (!hooks.after_step) return stepper.advance(t_out, y.data(), t);
   const TimeLoopHooks::CarriedData carried_now = [&stepper] { return stepper.carried_data(); };
   for (;;) {
     const AdvanceStatus st = stepper.step(t_out, y.data(), t);
+    if (removed) {
+      layout = std::move(*removed);
+      removed.reset();
+      y.resize(layout.size());
+    }
     progress();
     if (st != AdvanceStatus::Stepped && st != AdvanceStatus::Reached) return st;
     if (std::optional<TimeLoopHooks::Resize> r = hooks.after_step(t, y.data(), carried_now))
@@ -96,7 +104,21 @@ void TimeLoop::bound_steps(OdeSystem& system) {
   }
   if (opts_.step_floor <= 0) opts_.step_floor = s_.step_floor_fraction * t_end_;
   if (!opts_.interrupt) opts_.interrupt = [this] { return stop_signal() != 0; };
-  if (!opts_.synchronise && hooks_.event_due) opts_.synchronise = hooks_.event_due;
+  if (!opts_.wake_next && hooks_.wake_next) opts_.wake_next = hooks_.wake_next;
+  if (!opts_.remove_active && hooks_.remove_active && hooks_.restore_particles) {
+    opts_.remove_active = [this](Real t, const Real* y, const std::vector<std::size_t>& active) {
+      std::optional<TimeLoopHooks::Resize> r = hooks_.remove_active(t, y, active);
+      if (!r) return std::optional<StepperOptions::Removal>{};
+      if (r->y.size() != r->layout.size() || r->y.size() > y_.size())
+        throw std::logic_error("remove_active: a state that does not fit its layout, or grew");
+      removed_layout_ = std::move(r->layout);
+      return std::optional<StepperOptions::Removal>{{std::move(r->y), std::move(r->entry_source)}};
+    };
+    opts_.undo_removals = [this] {
+      hooks_.restore_particles(layout_);
+      removed_layout_.reset();
+    };
+  }
   if (s_.inject_nan_at > 0) opts_.inject_nan_from = s_.inject_nan_at;
 }
 
@@ -193,7 +215,7 @@ TimeLoopResult TimeLoop::run() {
         break;
       }
       const Real t_out = std::min(t_end_, sample_ * s_.sample_every);
-      const AdvanceStatus st = advance_to(*stepper_, hooks_, t_out, y_, t_, layout_, report_progress);
+      const AdvanceStatus st = advance_to(*stepper_, hooks_, t_out, y_, t_, layout_, removed_layout_, report_progress);
       if (st == AdvanceStatus::Interrupted) {  // mid-interval: checkpoint the last accepted step
         stop(stop_signal());
         break;

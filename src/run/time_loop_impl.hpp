@@ -87,6 +87,7 @@ class TimeLoop {
   std::vector<Real> y_;
   std::vector<Real> system_resume_;  // a distributed restart: this rank's share of the system's resume data
   StateLayout layout_;  // changes when after_step resizes the state
+  std::optional<StateLayout> removed_layout_;  // the layout after a removal inside the current step
   Real t_ = 0;
   std::unique_ptr<Stepper> stepper_;
 };

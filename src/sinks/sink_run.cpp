@@ -6,21 +6,42 @@
 
 namespace sphark {
 
-std::optional<TimeLoopHooks::Resize> SinkRunSupport::after_step(SpmhdScheme<3>& scheme, Real t, const Real* y) {
+void SinkRunSupport::reload_log() {
   log_.creations = static_cast<long>(creations_);
   log_.accreted_particles = static_cast<long>(accreted_);
   log_.first_creation_time = first_creation_t_;
-  const long created_before = log_.creations;
-  std::optional<TimeLoopHooks::Resize> r = sink_events(scheme, t, y, params_, log_);
+}
+
+void SinkRunSupport::save_log() {
+  created_ = log_.creations > static_cast<long>(creations_);
   creations_ = static_cast<Real>(log_.creations);
   accreted_ = static_cast<Real>(log_.accreted_particles);
   first_creation_t_ = log_.first_creation_time;
-  created_ = r && log_.creations > created_before;
+}
+
+std::optional<TimeLoopHooks::Resize> SinkRunSupport::after_step(SpmhdScheme<3>& scheme, Real t, const Real* y) {
+  reload_log();
+  std::optional<TimeLoopHooks::Resize> r = sink_events(scheme, t, y, params_, log_);
+  save_log();
   return r;
 }
 
-bool SinkRunSupport::event_due(const SpmhdScheme<3>& scheme, const Real* y) const {
-  return sink_event_due(scheme, y, params_);
+std::optional<TimeLoopHooks::Resize> SinkRunSupport::remove_active(SpmhdScheme<3>& scheme, Real t, const Real* y,
+                                                                   const std::vector<std::size_t>& active) {
+  reload_log();
+  std::optional<TimeLoopHooks::Resize> r = events_among_active(scheme, t, y, active, params_, log_);
+  save_log();
+  return r;
+}
+
+void SinkRunSupport::restore_particles(SpmhdScheme<3>& scheme, const StateLayout& layout) {
+  const std::size_t gas = layout.particles(Species::Gas);
+  accreted_ -= static_cast<Real>(gas) - static_cast<Real>(scheme.particles());
+  // equal masses: which particles does not matter; those given back start their density solves
+  // from the smoothing lengths of others
+  std::vector<std::size_t> kept(gas);
+  for (std::size_t i = 0; i < gas; ++i) kept[i] = i % scheme.particles();
+  scheme.change_particles(kept, layout.particles(Species::Sink));
 }
 
 std::vector<std::pair<std::string, Real*>> SinkRunSupport::saved_numbers() {

@@ -146,6 +146,18 @@ std::vector<Real> resize_species(const StateLayout& from, const Real* y_from, co
   return y;
 }
 
+// resize_species applied to the entries' numbers (1-based: the zeros it leaves have no source).
+std::vector<std::size_t> entry_sources(const StateLayout& from, const StateLayout& to, Species s,
+                                       const std::vector<std::size_t>& keep) {
+  std::vector<Real> number(from.size());
+  for (std::size_t k = 0; k < number.size(); ++k) number[k] = static_cast<Real>(k + 1);
+  const std::vector<Real> moved = resize_species(from, number.data(), to, s, keep);
+  std::vector<std::size_t> source(moved.size());
+  for (std::size_t k = 0; k < moved.size(); ++k)
+    source[k] = moved[k] == 0 ? kNoEntrySource : static_cast<std::size_t>(moved[k]) - 1;
+  return source;
+}
+
 std::vector<Real> per_field_tolerance(const StateLayout& L, const std::vector<std::pair<Field, Real>>& atol,
                                       Real fallback) {
   std::vector<Real> out(L.size(), fallback);

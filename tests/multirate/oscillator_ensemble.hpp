@@ -14,11 +14,15 @@ namespace sphark::test {
 
 class OscillatorEnsemble : public OdeSystem {
  public:
-  OscillatorEnsemble(std::vector<Real> omega, Real kappa) : w_(std::move(omega)), kappa_(kappa) {
-    const int n = static_cast<int>(w_.size());
-    Eigen::MatrixXd k = Eigen::MatrixXd::Constant(n, n, -kappa_);
-    for (int i = 0; i < n; ++i) k(i, i) = w_[i] * w_[i] + kappa_ * (n - 1);
-    eig_.compute(k);
+  OscillatorEnsemble(std::vector<Real> omega, Real kappa) : w_(std::move(omega)), kappa_(kappa) { decompose(); }
+  // Particles leaving and coming back (a stepper's remove_active / undo_removals).
+  void remove_particle(std::size_t i) {
+    w_.erase(w_.begin() + static_cast<std::ptrdiff_t>(i));
+    decompose();
+  }
+  void insert_particle(std::size_t i, Real omega) {
+    w_.insert(w_.begin() + static_cast<std::ptrdiff_t>(i), omega);
+    decompose();
   }
   std::size_t n() const { return w_.size(); }
   std::size_t size() const override { return 2 * n(); }
@@ -107,6 +111,13 @@ class OscillatorEnsemble : public OdeSystem {
   std::vector<Call> calls;  // every rhs_subset call when record_calls
 
  private:
+  void decompose() {
+    const int n = static_cast<int>(w_.size());
+    Eigen::MatrixXd k = Eigen::MatrixXd::Constant(n, n, -kappa_);
+    for (int i = 0; i < n; ++i) k(i, i) = w_[i] * w_[i] + kappa_ * (n - 1);
+    eig_.compute(k);
+  }
+
   std::vector<Real> w_;
   Real kappa_;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig_;

@@ -142,10 +142,13 @@ TEST(SinkEvents, ACollapsedClumpMakesASinkThenFeedsItConservingEverything) {
   }
 }
 
-// SinkRunSupport::event_due (what makes block steps synchronise, StepperOptions::synchronise):
-// true exactly when a gas particle is denser than rho_sink at the last evaluation or the sinks
-// would accrete one (inside the accretion radius and bound to the sink).
-TEST(SinkEvents, AnEventIsDueExactlyWhenACandidateOrGasToAccreteExists) {
+// A sink made inside a step (events_among_active; Phantom's check 3): a candidate is due exactly
+// when a gas particle was denser than rho_sink at the last evaluation (sink_creation_due); the
+// sink is made only when the candidate and every gas particle within r_acc of it are active,
+// and then it is the sink sink_events makes, with the gas entries bit for bit where
+// entry_source says and no source for the new sink's entries; otherwise nothing happens and
+// no refusal is counted.
+TEST(SinkEvents, ASinkIsMadeInsideAStepOnlyWhenItsWholeClumpIsActive) {
   const ParticlePlacement place = clump();
   SpmhdScheme<3> s(std::vector<Real>(place.size(), place.particle_mass), sink_options());
   std::vector<Real> y = clump_state(s, place), ydot(y.size());
@@ -154,27 +157,141 @@ TEST(SinkEvents, AnEventIsDueExactlyWhenACandidateOrGasToAccreteExists) {
   SinkParams p;
   p.accretion_radius = 0.08;
   p.rho_sink = rho_max * (1 + 1e-12);
-  EXPECT_FALSE(SinkRunSupport(p).event_due(s, y.data()));
-  p.rho_sink = rho_max * (1 - 1e-12);
-  EXPECT_TRUE(SinkRunSupport(p).event_due(s, y.data()));
+  EXPECT_FALSE(sink_creation_due(s, p));
+  p.rho_sink = 0.5 * rho_max;
+  EXPECT_TRUE(sink_creation_due(s, p));
+  // the clump sink_events would make (on an identical scheme)
+  SpmhdScheme<3> s2(std::vector<Real>(place.size(), place.particle_mass), sink_options());
+  ASSERT_EQ(s2.rhs(0, y.data(), ydot.data()), 0) << s2.last_error();
+  SinkEventLog log2;
+  const std::optional<TimeLoopHooks::Resize> between = sink_events(s2, 0, y.data(), p, log2);
+  ASSERT_TRUE(between.has_value());
+  const StateLayout L = s.layout();
+  const std::size_t gas = s.particles();
+  std::vector<std::size_t> clump_members;  // the gas sink_events took
+  std::vector<char> stays(gas, 0);
+  for (std::size_t a = 0; a < s2.particles(); ++a) {  // survivors keep their positions bit for bit
+    const Real* x = between->y.data() + between->layout.offset(Field::Position) + 3 * a;
+    for (std::size_t b = 0; b < gas; ++b)
+      if (std::memcmp(x, y.data() + L.offset(Field::Position) + 3 * b, 3 * sizeof(Real)) == 0) stays[b] = 1;
+  }
+  for (std::size_t b = 0; b < gas; ++b)
+    if (!stays[b]) clump_members.push_back(b);
+  ASSERT_GE(clump_members.size(), 2u);
+  std::vector<std::size_t> all(gas);
+  for (std::size_t a = 0; a < gas; ++a) all[a] = a;
   SinkEventLog log;
-  std::optional<TimeLoopHooks::Resize> r = sink_events(s, 0, y.data(), p, log);
-  ASSERT_TRUE(r.has_value());
-  std::vector<Real> y1 = r->y, dy1(y1.size());
-  ASSERT_EQ(s.rhs(0, y1.data(), dy1.data()), 0) << s.last_error();
-  p.rho_sink = 2 * rho_max;  // no candidate any more: only accretion can be due
+  // one member of the clump inactive: nothing, nothing counted
+  std::vector<std::size_t> but_one;
+  for (std::size_t a : all)
+    if (a != clump_members.back()) but_one.push_back(a);
+  EXPECT_FALSE(events_among_active(s, 0, y.data(), but_one, p, log).has_value());
+  EXPECT_EQ(log.creations, 0);
+  EXPECT_TRUE(log.refusals.empty());
+  // all active: the sink sink_events makes
+  const Totals before = totals(s, y.data());
+  const std::optional<TimeLoopHooks::Resize> inside = events_among_active(s, 0, y.data(), all, p, log);
+  ASSERT_TRUE(inside.has_value());
+  EXPECT_EQ(log.creations, 1);
+  EXPECT_EQ(inside->layout, between->layout);
+  EXPECT_EQ(inside->y, between->y);
+  expect_same(before, totals(s, inside->y.data()), gas);
+  ASSERT_EQ(inside->entry_source.size(), inside->y.size());
+  const std::size_t sink_first = inside->layout.offset(Species::Sink, Field::Position);
+  for (std::size_t k = 0; k < inside->y.size(); ++k) {
+    if (k < sink_first) {
+      ASSERT_LT(inside->entry_source[k], y.size()) << k;
+      ASSERT_EQ(inside->y[k], y[inside->entry_source[k]]) << k;
+    } else {
+      EXPECT_EQ(inside->entry_source[k], kNoEntrySource) << k;
+    }
+  }
+}
+
+// events_among_active (block steps: gas accreted at the events of its own steps): of the gas the sink
+// would accrete, exactly the active particles go; mass, momentum and angular momentum carry over
+// to round-off, and every gas entry of the new state is bit for bit the entry entry_source names
+// (the sink's entries come from the sink's, with its new values).
+namespace {
+// The gas particles of `from` (before) that a removal took, from its entry_source.
+std::vector<std::size_t> taken(const StateLayout& from, const TimeLoopHooks::Resize& r) {
+  const std::size_t n = from.particles(), kept = r.layout.particles();
+  std::vector<char> stays(n, 0);
+  for (std::size_t a = 0; a < kept; ++a) {
+    const std::size_t e = r.entry_source[r.layout.offset(Field::Position) + 3 * a];
+    stays.at((e - from.offset(Field::Position)) / 3) = 1;
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t a = 0; a < n; ++a)
+    if (!stays[a]) out.push_back(a);
+  return out;
+}
+}  // namespace
+
+// The clump with a sink made at its centre and moved onto gas particle 7 (the state).
+std::vector<Real> clump_with_sink_on_gas(SpmhdScheme<3>& s, const ParticlePlacement& place, const SinkParams& p) {
+  std::vector<Real> y = clump_state(s, place), ydot(y.size());
+  if (s.rhs(0, y.data(), ydot.data()) != 0) throw std::runtime_error(s.last_error());
+  SinkEventLog log;
+  std::optional<TimeLoopHooks::Resize> made = sink_events(s, 0, y.data(), p, log);
+  if (!made) throw std::runtime_error("no sink");
+  std::vector<Real> y1 = made->y;
   const StateLayout& L = s.layout();
-  Eigen::Map<Vec<3>> sink_x(y1.data() + L.offset(Species::Sink, Field::Position));
-  sink_x = Eigen::Map<const Vec<3>>(y1.data() + L.offset(Field::Position) + 3 * 7);  // on a gas particle
-  EXPECT_TRUE(SinkRunSupport(p).event_due(s, y1.data()));
-  Real nearest = std::numeric_limits<Real>::infinity();
-  sink_x = Vec<3>(0.3, 0, 0);  // outside the clump (radius 0.1)
-  for (std::size_t a = 0; a < s.particles(); ++a)
-    nearest = std::min(nearest, (Eigen::Map<const Vec<3>>(y1.data() + L.offset(Field::Position) + 3 * a) - Vec<3>(sink_x)).norm());
-  p.accretion_radius = nearest * (1 - 1e-12);
-  EXPECT_FALSE(SinkRunSupport(p).event_due(s, y1.data()));
-  p.accretion_radius = nearest * (1 + 1e-12);
-  EXPECT_TRUE(SinkRunSupport(p).event_due(s, y1.data()));
-  Eigen::Map<Vec<3>>(y1.data() + L.offset(Species::Sink, Field::Velocity)) = Vec<3>(100, 0, 0);  // unbound: not accreted
-  EXPECT_FALSE(SinkRunSupport(p).event_due(s, y1.data()));
+  Eigen::Map<Vec<3>>(y1.data() + L.offset(Species::Sink, Field::Position)) =
+      Eigen::Map<const Vec<3>>(y1.data() + L.offset(Field::Position) + 3 * 7);
+  return y1;
+}
+
+TEST(SinkEvents, AccretionAmongTheActiveTakesExactlyThemAndSaysWhereEveryEntryCameFrom) {
+  const ParticlePlacement place = clump();
+  SpmhdScheme<3> s(std::vector<Real>(place.size(), place.particle_mass), sink_options());
+  SinkParams p;
+  p.accretion_radius = 0.08;
+  {
+    std::vector<Real> y = clump_state(s, place), ydot(y.size());
+    ASSERT_EQ(s.rhs(0, y.data(), ydot.data()), 0) << s.last_error();
+    p.rho_sink = 0.5 * *std::max_element(s.rho().begin(), s.rho().end());
+  }
+  SpmhdScheme<3> s2(std::vector<Real>(place.size(), place.particle_mass), sink_options());
+  const std::vector<Real> y1 = clump_with_sink_on_gas(s, place, p), y2 = clump_with_sink_on_gas(s2, place, p);
+  ASSERT_EQ(y1, y2);
+  const StateLayout L = s.layout();
+  SinkEventLog log;
+  const std::size_t gas = s.particles();
+  std::vector<std::size_t> every(gas + 1), even;  // (+ the sink, the particle after the gas)
+  for (std::size_t a = 0; a <= gas; ++a) every[a] = a;
+  for (std::size_t a = 0; a <= gas; a += 2) even.push_back(a);
+  even.push_back(gas);
+  SinkEventLog unused;
+  const std::optional<TimeLoopHooks::Resize> all = events_among_active(s2, 0, y2.data(), every, p, unused);
+  ASSERT_TRUE(all.has_value());
+  const std::vector<std::size_t> would = taken(L, *all);
+  ASSERT_GE(would.size(), 4u);
+  std::vector<std::size_t> expected;
+  for (std::size_t a : would)
+    if (a % 2 == 0) expected.push_back(a);
+  ASSERT_LT(expected.size(), would.size());
+  ASSERT_GT(expected.size(), 0u);
+  const Totals before = totals(s, y1.data());
+  const long accreted_before = log.accreted_particles;
+  const std::optional<TimeLoopHooks::Resize> r = events_among_active(s, 0, y1.data(), even, p, log);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(taken(L, *r), expected);
+  EXPECT_EQ(log.accreted_particles - accreted_before, static_cast<long>(expected.size()));
+  EXPECT_EQ(r->layout, s.layout());
+  expect_same(before, totals(s, r->y.data()), gas);
+  ASSERT_EQ(r->entry_source.size(), r->y.size());
+  const std::size_t sinks_new = r->layout.offset(Species::Sink, Field::Position), sinks_old = L.offset(Species::Sink, Field::Position);
+  for (std::size_t k = 0; k < r->y.size(); ++k) {
+    const std::size_t e = r->entry_source[k];
+    ASSERT_LT(e, y1.size()) << k;
+    if (k < sinks_new) {
+      ASSERT_EQ(r->y[k], y1[e]) << k;
+      ASSERT_LT(e, sinks_old) << k;
+    } else {
+      EXPECT_EQ(e - sinks_old, k - sinks_new) << k;
+    }
+  }
+  // nothing active to take: nothing
+  EXPECT_FALSE(events_among_active(s, 0, r->y.data(), {s.particles()}, p, log).has_value());
 }

@@ -117,4 +117,18 @@ TEST(StateLayout, ResizeKeepsEverySurvivorBitForBitAndLeavesNewParticlesZero) {
   EXPECT_EQ(s[more.offset(Species::Sink, Field::Position) + 2], 0.0);
   EXPECT_THROW(resize_species(L, y.data(), more, Species::Sink, {0}), std::invalid_argument);  // gas differs too
   EXPECT_THROW(resize_species(L, y.data(), gas_shrunk, Species::Gas, {0, 2, 5}), std::invalid_argument);
+  // entry_sources: where each entry of the resized state came from, none for the new sink's
+  const std::vector<std::size_t> from_gas = entry_sources(L, gas_shrunk, Species::Gas, {0, 2, 4});
+  ASSERT_EQ(from_gas.size(), g.size());
+  for (std::size_t k = 0; k < g.size(); ++k) EXPECT_EQ(g[k], y[from_gas[k]]) << k;
+  const std::vector<std::size_t> from_sinks = entry_sources(gas_shrunk, more, Species::Sink, {0});
+  ASSERT_EQ(from_sinks.size(), s.size());
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const bool new_sink = k == more.offset(Species::Sink, Field::Mass) + 1 ||
+                          (k >= more.offset(Species::Sink, Field::Position) + 2 && k < more.offset(Species::Sink, Field::Position) + 4);
+    if (new_sink)
+      EXPECT_EQ(from_sinks[k], kNoEntrySource) << k;
+    else
+      EXPECT_EQ(s[k], g[from_sinks[k]]) << k;
+  }
 }

@@ -2,6 +2,7 @@
 // Options and statistics shared by every time stepper (ARKODE ERK, ARKODE IMEX, leapfrog).
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,12 +50,27 @@ struct StepperOptions {
   // signals, run/signals.hpp). Empty: never. A distributed run polls it on every rank and
   // agrees on the answer (collective). The poll does not change a run that is not interrupted.
   std::function<bool()> interrupt;
-  // Steppers whose particles take steps of their own ("leapfrog-blocks") poll it after every
-  // event with the time and the (predicted) state the event evaluated: true ends the top step at
-  // the next event with every particle synchronised there, so that what happens between steps
-  // (the time loop's after_step: sinks created, gas accreted) happens then and not only once per
-  // top step. Empty: never. Global steppers synchronise every step and do not poll it.
-  std::function<bool(Real t, const Real* y)> synchronise;
+  // Steppers whose particles take steps of their own ("leapfrog-blocks") call it at every event
+  // inside a top step, after the kicks, with the time, the state there (every particle's
+  // position at t; every entry of the `active` particles, those just evaluated and kicked, at t)
+  // and the active particles: a system that removes some of them there (gas accreted onto a
+  // sink, Phantom's way; or made into a new sink) changes its particles and returns the new
+  // state with, for each of its entries, the old entry it continues (entry_source; ~0 for every
+  // entry of a new particle; the state does not grow), or nothing. The stepper carries its own
+  // per-entry and per-particle data along, evaluates the new particles at (t, y), and goes on
+  // with the top step. A top step that then fails or is interrupted rolls
+  // back to its start: undo_removals() must give the system back the particles it had there.
+  struct Removal {
+    std::vector<Real> y;
+    std::vector<std::size_t> entry_source;
+  };
+  std::function<std::optional<Removal>(Real t, const Real* y, const std::vector<std::size_t>& active)> remove_active;
+  std::function<void()> undo_removals;
+  // Called after remove_active with the state and active set after it: particles (any order)
+  // that must end their steps at the next event, woken as a particle whose stable step fell is
+  // (e.g. the neighbourhood of a sink candidate, which remove_active can turn into a sink only
+  // when all of it is active). Empty: none.
+  std::function<std::vector<std::size_t>(Real t, const Real* y, const std::vector<std::size_t>& active)> wake_next;
   // Restart: Stepper::resume_data() of the run being continued (see stepper.hpp); empty = none.
   std::vector<Real> resume_data;
   // Testing aid of the blow-up path: from this time on the guard (integrate/guarded_system.hpp)

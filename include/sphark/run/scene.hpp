@@ -76,10 +76,18 @@ class SceneRun {
     return std::nullopt;
   }
   virtual StateLayout restart_layout(const Checkpoint& /*c*/) { return layout(); }
-  // With changes_particles: true when after_step would change them at (t, y) now (a sink
-  // candidate, gas inside an accretion radius), so that a stepper whose particles take steps of
-  // their own synchronises them (StepperOptions::synchronise, TimeLoopHooks::synchronise).
-  virtual bool event_due(Real /*t*/, const Real* /*y*/) { return false; }
+  // With changes_particles: inside the top step of a stepper whose particles take steps of their
+  // own, the particles removed at an event from those active there (TimeLoopHooks::remove_active,
+  // with entry_source), and the particles of a layout given back (restore_particles).
+  virtual std::optional<TimeLoopHooks::Resize> remove_active(Real /*t*/, const Real* /*y*/,
+                                                             const std::vector<std::size_t>& /*active*/) {
+    return std::nullopt;
+  }
+  virtual void restore_particles(const StateLayout& /*layout*/) {}
+  // The particles that must end their steps at the next event (TimeLoopHooks::wake_next).
+  virtual std::vector<std::size_t> wake_next(Real /*t*/, const Real* /*y*/, const std::vector<std::size_t>& /*active*/) {
+    return {};
+  }
   // A distributed run (Scene::supports_distributed_runs): the global ids of this rank's particles
   // in state order, and on a restart this rank's share of the checkpoint's particles, which the
   // system then holds (TimeLoopHooks::global_ids, take_share).

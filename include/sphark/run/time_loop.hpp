@@ -109,10 +109,17 @@ struct TimeLoopHooks {
   };
   using CarriedData = std::function<std::vector<Real>()>;
   std::function<std::optional<Resize>(Real t, const Real* y, const CarriedData& carried)> after_step;
-  // Optional, with after_step: true when after_step would change the particles at (t, y); a
-  // stepper with particles on steps of their own then synchronises them at its next event
-  // (StepperOptions::synchronise) instead of at the end of its top step.
-  std::function<bool(Real t, const Real* y)> event_due;
+  // Optional, with after_step: at an event inside the top step of a stepper whose particles
+  // take steps of their own, removes some of the particles active there (gas accreted onto a
+  // sink; StepperOptions::remove_active): the new layout and state, with entry_source (new entry
+  // k continues old entry entry_source[k]; every new entry has one). restore_particles gives the
+  // system back the particles of `layout` (a step that fails or is interrupted after a removal
+  // rolls back to its start).
+  std::function<std::optional<Resize>(Real t, const Real* y, const std::vector<std::size_t>& active)> remove_active;
+  std::function<void(const StateLayout& layout)> restore_particles;
+  // Optional, with after_step: after remove_active, the particles that must end their steps at the
+  // stepper's next event (StepperOptions::wake_next), e.g. a sink candidate's neighbourhood.
+  std::function<std::vector<std::size_t>(Real t, const Real* y, const std::vector<std::size_t>& active)> wake_next;
   // Optional, with after_step: on a restart, the system takes the checkpoint's species counts
   // and returns its layout (which must then match the checkpoint's).
   std::function<StateLayout(const Checkpoint& c)> restart_layout;

@@ -29,10 +29,33 @@ struct SinkEventLog {
 // The sinks of state y (accretion radius params.accretion_radius each).
 std::vector<Sink> sinks_of(const SpmhdScheme<3>& scheme, const Real* y, Real accretion_radius);
 
-// Whether sink_events at y would change the particles: gas it would accrete (the same test), or
-// a candidate for a new sink — a gas particle denser than rho_sink at the scheme's last
-// evaluation (of y; the creation checks that could still refuse it need a new evaluation).
-bool sink_event_due(const SpmhdScheme<3>& scheme, const Real* y, const SinkParams& params);
+// A candidate for a new sink: a gas particle denser than rho_sink at the scheme's last
+// evaluation (the creation checks may still refuse it).
+bool sink_creation_due(const SpmhdScheme<3>& scheme, const SinkParams& params);
+
+// The sink events inside a step of particles on steps of their own (TimeLoopHooks::remove_active;
+// Phantom's way with individual time steps), among the `active` particles (particle indices,
+// gas first, ascending), whose entries must all be at the time t of y (the other particles'
+// positions too; their other entries may lie mid-step):
+//   accretion  of the active gas the sinks accrete at y (the same test as sink_events');
+//   creation   if none is accreted and a gas particle was denser than rho_sink at the scheme's
+//              last evaluation (an evaluation at this event: its densities, h, div v and
+//              potential; y's positions and velocities): the creation checks of sink_events,
+//              made only when the candidate and every gas particle within r_acc of it are
+//              active (Phantom's check 3; otherwise nothing happens and nothing is counted).
+// The new layout and state with entry_source (kNoEntrySource for a new sink's entries);
+// nothing when nothing happened or the event would take every gas particle (sink_events then
+// decides).
+std::optional<TimeLoopHooks::Resize> events_among_active(SpmhdScheme<3>& scheme, Real t, const Real* y,
+                                                         const std::vector<std::size_t>& active,
+                                                         const SinkParams& params, SinkEventLog& log);
+
+// What events_among_active needs to make a sink at the next event: the gas particles within r_acc
+// of the candidate (a gas particle denser than rho_sink at the last evaluation, not within the
+// creation radius of a sink) that are not `active` now (TimeLoopHooks::wake_next); none when
+// there is no such candidate.
+std::vector<std::size_t> creation_clump_to_wake(const SpmhdScheme<3>& scheme, const Real* y,
+                                                const std::vector<std::size_t>& active, const SinkParams& params);
 
 std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& scheme, Real t, const Real* y, const SinkParams& params,
                                                  SinkEventLog& log);

@@ -4,6 +4,9 @@
 // collapse, the gravitating sphere):
 //   after_step       the sink events between two steps (sinks/sink_events.hpp), the event log
 //                    reloaded first from the numbers the checkpoint restores (saved_numbers)
+//   remove_active    accretion and creation inside a step of particles on steps of their own,
+//   restore_particles  its undoing, and the particles a creation needs woken (wake_next)
+//   wake_next
 //   saved_numbers    the log's counts as checkpointed run-loop numbers
 //   restart_layout   the scheme takes the checkpoint's gas and sink counts (equal-mass gas)
 //   columns/values   the diagnostics columns n_sinks and sink_mass (the mass of all sinks)
@@ -28,11 +31,21 @@ class SinkRunSupport {
   const SinkParams& params() const { return params_; }
   const SinkEventLog& log() const { return log_; }
 
-  // SceneRun::after_step: sink_events at (t, y). created() says whether it created a sink.
+  // SceneRun::after_step: sink_events at (t, y). created() says whether it (or the last
+  // remove_active) created a sink.
   std::optional<TimeLoopHooks::Resize> after_step(SpmhdScheme<3>& scheme, Real t, const Real* y);
   bool created() const { return created_; }
-  // SceneRun::event_due: after_step at (t, y) could change the particles (sink_event_due).
-  bool event_due(const SpmhdScheme<3>& scheme, const Real* y) const;
+  // SceneRun::remove_active: events_among_active at (t, y), counted in the log.
+  std::optional<TimeLoopHooks::Resize> remove_active(SpmhdScheme<3>& scheme, Real t, const Real* y,
+                                                     const std::vector<std::size_t>& active);
+  // SceneRun::wake_next: creation_clump_to_wake at y.
+  std::vector<std::size_t> wake_next(const SpmhdScheme<3>& scheme, const Real* y,
+                                     const std::vector<std::size_t>& active) const {
+    return creation_clump_to_wake(scheme, y, active, params_);
+  }
+  // SceneRun::restore_particles: the scheme takes the layout's species counts (as restart_layout;
+  // the gas it gets back is no longer counted as accreted).
+  void restore_particles(SpmhdScheme<3>& scheme, const StateLayout& layout);
   // SceneRun::saved_numbers: sink_creations, accreted_particles, first_sink_time.
   std::vector<std::pair<std::string, Real*>> saved_numbers();
   // SceneRun::restart_layout: the scheme takes the checkpoint's species counts (gas: the first
@@ -45,6 +58,8 @@ class SinkRunSupport {
   static std::array<Real, 2> values(const SpmhdScheme<3>& scheme, const Real* y);
 
  private:
+  void reload_log();  // the log's counts from the checkpointed numbers
+  void save_log();    // and back
   SinkParams params_;
   SinkEventLog log_;
   // the log's counts as checkpointed numbers (the log is reloaded from them before every event)

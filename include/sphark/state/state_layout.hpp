@@ -136,6 +136,11 @@ class StateLayout {
 std::vector<Real> resize_species(const StateLayout& from, const Real* y_from, const StateLayout& to, Species s,
                                  const std::vector<std::size_t>& keep);
 
+// For each entry of `to` (resize_species(from, ., to, s, keep)), the entry of `from` it copies;
+// kNoEntrySource for the entries of the particles after keep.
+inline constexpr std::size_t kNoEntrySource = ~std::size_t{0};
+std::vector<std::size_t> entry_sources(const StateLayout& from, const StateLayout& to, Species s,
+                                       const std::vector<std::size_t>& keep);
 // Zero-copy views over a raw state array (ARKODE's N_Vector data or our own buffer).
 template <int C>
 using FieldMap = Eigen::Map<Eigen::Matrix<Real, C, Eigen::Dynamic>>;

@@ -79,18 +79,18 @@ std::string collapse_summary(const std::string& variant, CollapseRun& run, const
   std::ostringstream s;
   s << "variant,sphere_particles,particles,t_reached_over_tff,sink_time_over_tff,n_sinks,sink_mass,accreted,"
        "peak_density,peak_density_t,mean_h_divB_over_B_at_peak_density,max_mean_h_divB_over_B,peak_momentum,"
-       "peak_momentum_t,other_momentum_bound,sink_offset,sink_relative_speed,steps,rhs_evals,wall_s,refusals\n";
+       "peak_momentum_t,other_momentum_bound,sink_offset,sink_relative_speed,steps,rhs_evals,particle_evals,wall_s,refusals\n";
   char line[1024];
   const std::vector<Real> sinks = csv_column(csv, "n_sinks"), sink_mass = csv_column(csv, "sink_mass");
   std::snprintf(line, sizeof line,
-                "%s,%zu,%zu,%.5g,%.5g,%.0f,%.5g,%ld,%.4e,%.5g,%.4e,%.4e,%.4e,%.5g,%.3e,%.4e,%.4e,%ld,%ld,%.1f,%s\n",
+                "%s,%zu,%zu,%.5g,%.5g,%.0f,%.5g,%ld,%.4e,%.5g,%.4e,%.4e,%.4e,%.5g,%.3e,%.4e,%.4e,%ld,%ld,%ld,%.1f,%s\n",
                 variant.c_str(), run.cloud().sphere_particles(),
                 run.cloud().sphere_particles() + run.cloud().placement.ambient.size() / 3,
                 result.t_reached / tff, log.first_creation_time >= 0 ? log.first_creation_time / tff : std::nan(""),
                 sinks.empty() ? 0.0 : sinks.back(), sink_mass.empty() ? 0.0 : sink_mass.back(),
                 log.accreted_particles, rho.value, rho.t, err.empty() ? std::nan("") : err[rho.row], max_of(err),
                 momentum.value, momentum.t, other, offset, speed, result.stats.steps, result.stats.rhs_evals,
-                result.wall_seconds, refusals.empty() ? "-" : refusals.c_str());
+                result.stats.particle_evals, result.wall_seconds, refusals.empty() ? "-" : refusals.c_str());
   s << line;
   return s.str();
 }

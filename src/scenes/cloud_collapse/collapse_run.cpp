@@ -34,7 +34,7 @@ std::vector<std::string> CollapseRun::columns() const {
           "kinetic_energy", "magnetic_energy", "thermal_energy", "psi_energy", "potential_energy", "total_energy",
           "n_sinks", "sink_mass", "sink_x", "sink_y", "sink_z", "angular_momentum_z", "momentum_rate",
           "tensile_momentum_rate", "other_momentum_rate", "dt_courant", "dt_force", "gas_particles", "steps",
-          "rhs_evals"};
+          "rhs_evals", "particle_evals"};
 }
 
 std::vector<Real> CollapseRun::diagnostics(Real t, const Real* y, const StepperStats& st) {
@@ -55,7 +55,7 @@ std::vector<Real> CollapseRun::diagnostics(Real t, const Real* y, const StepperS
           ns ? xs[0] : kNaN, ns ? xs[1] : kNaN, ns ? xs[2] : kNaN, angular_momentum_z(s, y), budget.total.norm(),
           budget.tensile.norm(), (budget.total - budget.tensile).norm(), steps_ok ? minimum(courant) : kNaN,
           steps_ok ? minimum(force) : kNaN, static_cast<Real>(s.particles()), static_cast<Real>(st.steps),
-          static_cast<Real>(st.rhs_evals)};
+          static_cast<Real>(st.rhs_evals), static_cast<Real>(st.particle_evals)};
 }
 
 ParticleFrame CollapseRun::frame(Real t, const Real* y) {
@@ -79,12 +79,22 @@ void CollapseRun::settings(TimeLoopSettings& s) {
 std::optional<TimeLoopHooks::Resize> CollapseRun::after_step(Real t, const Real* y,
                                                            const TimeLoopHooks::CarriedData&) {
   std::optional<TimeLoopHooks::Resize> r = sinks_.after_step(cloud_.scheme, t, y);
-  if (sinks_.created()) {
-    std::fprintf(stderr, "cloud_collapse: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",
-                 sinks_.log().creations, t / cloud_.numbers.free_fall_time, cloud_.scheme.particles());
-    write_step_levels("sink_formation", t, r->y.data());
-  }
+  announce_creation(t, r);
   return r;
+}
+
+std::optional<TimeLoopHooks::Resize> CollapseRun::remove_active(Real t, const Real* y,
+                                                              const std::vector<std::size_t>& active) {
+  std::optional<TimeLoopHooks::Resize> r = sinks_.remove_active(cloud_.scheme, t, y, active);
+  announce_creation(t, r);
+  return r;
+}
+
+void CollapseRun::announce_creation(Real t, const std::optional<TimeLoopHooks::Resize>& r) {
+  if (!sinks_.created() || !r) return;
+  std::fprintf(stderr, "cloud_collapse: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",
+               sinks_.log().creations, t / cloud_.numbers.free_fall_time, cloud_.scheme.particles());
+  write_step_levels("sink_formation", t, r->y.data());
 }
 
 StateLayout CollapseRun::restart_layout(const Checkpoint& c) {

@@ -28,7 +28,11 @@ class CollapseRun final : public SceneRun {
   std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
                                                   const TimeLoopHooks::CarriedData& carried) override;
   StateLayout restart_layout(const Checkpoint& c) override;
-  bool event_due(Real, const Real* y) override { return sinks_.event_due(cloud_.scheme, y); }
+  std::optional<TimeLoopHooks::Resize> remove_active(Real t, const Real* y, const std::vector<std::size_t>& active) override;
+  void restore_particles(const StateLayout& layout) override { sinks_.restore_particles(cloud_.scheme, layout); }
+  std::vector<std::size_t> wake_next(Real, const Real* y, const std::vector<std::size_t>& active) override {
+    return sinks_.wake_next(cloud_.scheme, y, active);
+  }
   void settings(TimeLoopSettings& s) override;
 
   // After the run: the step levels and the column-density maps of the last frame (its state).
@@ -42,6 +46,7 @@ class CollapseRun final : public SceneRun {
 
  private:
   void write_step_levels(const std::string& event, Real t, const Real* y);
+  void announce_creation(Real t, const std::optional<TimeLoopHooks::Resize>& r);  // message, step levels
   void write_maps(const Real* y);
 
   CloudCollapseParams p_;

@@ -75,10 +75,21 @@ std::vector<std::pair<std::string, Real*>> GravitatingSphereRun::saved_numbers()
 std::optional<TimeLoopHooks::Resize> GravitatingSphereRun::after_step(Real t, const Real* y,
                                                                     const TimeLoopHooks::CarriedData&) {
   std::optional<TimeLoopHooks::Resize> r = sinks_.after_step(sphere_.scheme, t, y);
+  announce_creation(t);
+  return r;
+}
+
+std::optional<TimeLoopHooks::Resize> GravitatingSphereRun::remove_active(Real t, const Real* y,
+                                                                       const std::vector<std::size_t>& active) {
+  std::optional<TimeLoopHooks::Resize> r = sinks_.remove_active(sphere_.scheme, t, y, active);
+  announce_creation(t);
+  return r;
+}
+
+void GravitatingSphereRun::announce_creation(Real t) const {
   if (sinks_.created())
     std::fprintf(stderr, "gravitating_sphere: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",
                  sinks_.log().creations, t / kUniformFreeFall, sphere_.scheme.particles());
-  return r;
 }
 
 bool GravitatingSphereRun::finished(Real t) {

@@ -36,12 +36,17 @@ class GravitatingSphereRun final : public SceneRun {
   std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
                                                   const TimeLoopHooks::CarriedData& carried) override;
   StateLayout restart_layout(const Checkpoint& c) override;
-  bool event_due(Real, const Real* y) override { return sinks_.event_due(sphere_.scheme, y); }
+  std::optional<TimeLoopHooks::Resize> remove_active(Real t, const Real* y, const std::vector<std::size_t>& active) override;
+  void restore_particles(const StateLayout& layout) override { sinks_.restore_particles(sphere_.scheme, layout); }
+  std::vector<std::size_t> wake_next(Real, const Real* y, const std::vector<std::size_t>& active) override {
+    return sinks_.wake_next(sphere_.scheme, y, active);
+  }
 
   GravitatingSphere& sphere() { return sphere_; }
   const SinkEventLog& sink_log() const { return sinks_.log(); }
 
  private:
+  void announce_creation(Real t) const;  // the message when the last event created a sink
   GravitatingSphereParams p_;
   GravitatingSphere sphere_;
   Real every_;
