@@ -20,11 +20,12 @@
 // needs a shorter step, a longer one only where that step's grid aligns with the current tick.
 // All levels meet at the end of the cycle; there (t, y) is synchronised and returned.
 // Particles removed inside the cycle (StepperOptions::remove_active: gas accreted onto a sink,
-// or made into one, among the active particles, as Phantom's ptmass.F90 does with individual
-// steps): after an event's kicks the system may remove some of that event's active particles,
+// or made into one, among the active particles; Phantom makes sinks so, ptmass.F90 "CHECK 3"):
+// after an event's kicks the system may remove some of that event's active particles,
 // whose every entry is then at the event's time; the others' entries and derivatives, levels
 // and step starts move with them, a new particle (a sink) is evaluated there, and the cycle goes
-// on. No other evaluation is added: the next kicks use the last derivatives, as Phantom's do.
+// on. No other evaluation is added: the next kicks use the last derivatives (Phantom does not
+// re-evaluate after accretion either).
 // StepperOptions::wake_next names particles to be woken at the next event (a sink candidate's
 // neighbourhood, which must be all active for the sink to be made).
 //

@@ -54,7 +54,7 @@ struct StepperOptions {
   // inside a top step, after the kicks, with the time, the state there (every particle's
   // position at t; every entry of the `active` particles, those just evaluated and kicked, at t)
   // and the active particles: a system that removes some of them there (gas accreted onto a
-  // sink, Phantom's way; or made into a new sink) changes its particles and returns the new
+  // sink, or made into a new sink) changes its particles and returns the new
   // state with, for each of its entries, the old entry it continues (entry_source; ~0 for every
   // entry of a new particle; the state does not grow), or nothing. The stepper carries its own
   // per-entry and per-particle data along, evaluates the new particles at (t, y), and goes on

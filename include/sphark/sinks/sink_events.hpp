@@ -34,7 +34,7 @@ std::vector<Sink> sinks_of(const SpmhdScheme<3>& scheme, const Real* y, Real acc
 bool sink_creation_due(const SpmhdScheme<3>& scheme, const SinkParams& params);
 
 // The sink events inside a step of particles on steps of their own (TimeLoopHooks::remove_active;
-// Phantom's way with individual time steps), among the `active` particles (particle indices,
+// Phantom's check 3 for creation), among the `active` particles (particle indices,
 // gas first, ascending), whose entries must all be at the time t of y (the other particles'
 // positions too; their other entries may lie mid-step):
 //   accretion  of the active gas the sinks accrete at y (the same test as sink_events');
