@@ -154,17 +154,22 @@ Sink sink_from_clump(const GasView& gas, const std::vector<std::uint32_t>& clump
   return absorb(seed, gas, clump, box);
 }
 
+SinkUpdate sink_made_of(const GasView& gas, const std::vector<Sink>& sinks, const std::vector<std::uint32_t>& clump,
+                        const SinkParams& params) {
+  SinkUpdate up;
+  up.sinks = sinks;
+  up.sinks.push_back(sink_from_clump(gas, clump, params.accretion_radius, params.box));
+  up.removed = clump;
+  up.accreted_by.assign(clump.size(), static_cast<std::uint32_t>(sinks.size()));
+  return up;
+}
+
 SinkUpdate create_sink_if_allowed(const GasView& gas, const std::vector<Sink>& sinks, const SinkParams& params,
                                   SinkCheck* reason) {
   const SinkCreationTest t = test_sink_creation(gas, sinks, params);
   if (reason) *reason = t.result;
-  SinkUpdate up;
-  up.sinks = sinks;
-  if (t.result != SinkCheck::ok) return up;
-  up.sinks.push_back(sink_from_clump(gas, t.clump, params.accretion_radius, params.box));
-  up.removed = t.clump;
-  up.accreted_by.assign(t.clump.size(), static_cast<std::uint32_t>(sinks.size()));
-  return up;
+  if (t.result != SinkCheck::ok) return SinkUpdate{sinks, {}, {}};
+  return sink_made_of(gas, sinks, t.clump, params);
 }
 
 }  // namespace sphark

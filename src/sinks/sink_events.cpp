@@ -48,11 +48,16 @@ GasView moving_gas(const SpmhdScheme<3>& s, const Real* y) {
   return moving;
 }
 
+// The gas particles an event keeps (ascending).
+std::vector<std::size_t> kept_gas(const SpmhdScheme<3>& s, const SinkUpdate& update) {
+  const std::vector<std::uint32_t> survivors = surviving_indices(s.particles(), update.removed);
+  return {survivors.begin(), survivors.end()};
+}
+
 // The state after the event: the gas without `removed`, the sinks `sinks` (all of them rewritten).
 TimeLoopHooks::Resize apply(SpmhdScheme<3>& s, const Real* y, const SinkUpdate& update) {
   const StateLayout& from = s.layout();
-  const std::vector<std::uint32_t> survivors = surviving_indices(s.particles(), update.removed);
-  const std::vector<std::size_t> kept(survivors.begin(), survivors.end());
+  const std::vector<std::size_t> kept = kept_gas(s, update);
   const StateLayout fewer_gas = from.with_count(Species::Gas, kept.size());
   const std::vector<Real> y_gas = resize_species(from, y, fewer_gas, Species::Gas, kept);
   const std::size_t old_sinks = from.particles(Species::Sink), new_sinks = update.sinks.size();
@@ -112,8 +117,7 @@ std::vector<std::size_t> entry_sources_after(const StateLayout& from, const std:
 // The event `update` made inside a step: the new state with its entries' sources.
 TimeLoopHooks::Resize apply_with_sources(SpmhdScheme<3>& s, const Real* y, const SinkUpdate& update) {
   const StateLayout from = s.layout();
-  const std::vector<std::uint32_t> survivors = surviving_indices(s.particles(), update.removed);
-  const std::vector<std::size_t> kept(survivors.begin(), survivors.end());
+  const std::vector<std::size_t> kept = kept_gas(s, update);
   TimeLoopHooks::Resize r = apply(s, y, update);
   r.entry_source = entry_sources_after(from, kept, update.sinks.size());
   return r;
@@ -156,12 +160,7 @@ std::optional<SinkUpdate> creation_among(const SpmhdScheme<3>& s, const Real* y,
     return std::nullopt;
   }
   if (test.clump.size() >= s.particles()) return std::nullopt;  // (sink_events decides)
-  SinkUpdate up;
-  up.sinks = sinks;
-  up.sinks.push_back(sink_from_clump(gas.view, test.clump, params.accretion_radius, params.box));
-  up.removed = test.clump;
-  up.accreted_by.assign(test.clump.size(), static_cast<std::uint32_t>(sinks.size()));
-  return up;
+  return sink_made_of(gas.view, sinks, test.clump, params);
 }
 
 }  // namespace

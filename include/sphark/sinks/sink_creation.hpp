@@ -92,6 +92,10 @@ SinkCreationTest test_sink_creation(const GasView& gas, const std::vector<Sink>&
 Sink sink_from_clump(const GasView& gas, const std::vector<std::uint32_t>& clump, Real r_acc,
                      const std::optional<PeriodicBox<3>>& box);
 
+// The sinks after a new one made of `clump` (sink_from_clump) is appended, the clump removed.
+SinkUpdate sink_made_of(const GasView& gas, const std::vector<Sink>& sinks, const std::vector<std::uint32_t>& clump,
+                        const SinkParams& params);
+
 // test_sink_creation and, if it passes, the new sink appended (its clump removed).
 // result.removed is empty when no sink was created.
 SinkUpdate create_sink_if_allowed(const GasView& gas, const std::vector<Sink>& sinks, const SinkParams& params,
