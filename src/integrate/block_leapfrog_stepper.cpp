@@ -8,12 +8,14 @@
 //   end of i's step:    ẇ_i = f_i(t, x, w*) for the active set  (OdeSystem::rhs_subset)
 //                       w_i += dt_i/2 ẇ_i                       (kick)
 // Wake-up (the time-step limiter of Saitoh & Makino 2009, ApJ 697 L99, as Phantom's): at every
-// event a particle whose stable step (at the last event, after its evaluation: one evaluation of
-// every particle's stable step per event) has fallen below its current step ends that step
-// early, at the event: its drift and start kick are cut back to the elapsed part
-// e of the step (x -= e (dt_i - e)/2 ẇ_old, w -= (dt_i - e)/2 ẇ_old), it is evaluated with the
-// ending particles and kicked by e/2 ẇ_new, then binned afresh (a system that wants neighbours'
-// steps to bound each other folds that into particle_stable_dt).
+// event a particle whose stable step has fallen below its current step ends that step early,
+// at the event: its drift and start kick are cut back to the elapsed part e of the step
+// (x -= e (dt_i - e)/2 ẇ_old, w -= (dt_i - e)/2 ẇ_old), it is evaluated with the ending
+// particles and kicked by e/2 ẇ_new, then binned afresh. A particle's stable step is its own at
+// its last evaluation, lowered by the bounds that the particles evaluated since put on it
+// (OdeSystem::active_stable_dt after every event's evaluation: a system that wants neighbours'
+// steps to bound each other, as SPH does, puts those bounds there; by default every particle's
+// own step at every event).
 // w* predicts every particle's w to the event time from its last kick: w_j + (t - t_mid_j) ẇ_j,
 // t_mid_j the middle of j's current step (for an active particle: the leapfrog's predictor
 // w_half + dt/2 ẇ_n, as in "leapfrog"). An ending particle takes a new level at once if it
@@ -38,6 +40,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -99,7 +102,7 @@ class BlockLeapfrogStepper final : public Stepper {
   std::vector<std::vector<std::size_t>> entries_;  // particle -> its kicked entries (not x)
   Real t_;
   std::vector<Real> y_, dy_;  // synchronised state at t_ and its derivative (FSAL)
-  std::vector<Real> w_, eval_, out_, stable_;
+  std::vector<Real> w_, eval_, out_, stable_, bound_;  // stable_: each particle's step since its last rebin
   std::vector<int> level_;
   std::vector<std::int64_t> start_;  // tick at which each particle's current step began
   LevelPartition bins_;
@@ -195,10 +198,13 @@ void BlockLeapfrogStepper::kick(const std::vector<std::size_t>& particles, Real 
 // New levels for `particles` whose steps end at `tick` (fresh: the start of a cycle, no
 // hysteresis across a change of the top step); a longer step only where its grid aligns.
 void BlockLeapfrogStepper::rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh) {
-  stable_.assign(level_.size(), 0);
-  if (system_.particle_stable_dt(t, eval_.data(), dy_.data(), stable_.data()) != 0)
+  bound_.assign(level_.size(), 0);
+  if (system_.active_stable_dt(t, eval_.data(), dy_.data(), particles, bound_.data()) != 0)
     throw CycleFailure("particle_stable_dt failed at t=" + at_time(t) + ": " + system_.last_error());
+  stable_.resize(level_.size(), std::numeric_limits<Real>::infinity());
+  for (std::size_t i = 0; i < level_.size(); ++i) stable_[i] = std::min(stable_[i], bound_[i]);  // the others' bounds
   for (std::size_t i : particles) {
+    stable_[i] = bound_[i];  // the active particles' own, afresh
     const Real dt = opts_.cfl_safety * stable_[i];
     if (!(dt > 0)) throw CycleFailure("particle " + std::to_string(i) + ": stable step " + at_time(dt) + " at t=" + at_time(t));
     int l = fresh ? bins_.needed_level(dt) : bins_.next_level(level_[i], dt);
@@ -236,9 +242,9 @@ void BlockLeapfrogStepper::predict(std::int64_t tick) {
 }
 
 // The particles whose step goes on past `tick` and whose stable step is below it, from the stable
-// steps of the last rebin (at the previous event, after its evaluation): one evaluation of
-// particle_stable_dt per event, the wake-up one event later; and those StepperOptions::wake_next
-// named at the previous event.
+// steps as of the last rebin (at the previous event, after its evaluation: one active_stable_dt
+// per event, the wake-up one event later); and those StepperOptions::wake_next named at the
+// previous event.
 std::vector<std::size_t> BlockLeapfrogStepper::woken_at(std::int64_t tick) const {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < level_.size(); ++i)

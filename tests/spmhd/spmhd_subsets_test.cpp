@@ -2,7 +2,10 @@
 // rhs_subset(complement of A) add up to rhs() bit for bit on a self-gravitating, magnetised,
 // rotating clump with a sink particle (every term on); each is zero outside its set; the pair
 // interactions split between them; particle_stable_dt is what max_stable_dt minimises, capped by
-// 4 x the neighbours', and a sink's is the shortest gas step.
+// 4 x the neighbours', and a sink's is the shortest gas step. At moved positions a subset
+// solves the density of its rows' neighbourhood only, and its rows are the full rhs()'s bit for
+// bit in velocity (the cleaning's global c_h aside, to round-off in B and psi); active_stable_dt
+// is the limiter seen from the active particles.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +15,7 @@
 
 #include "sphark/initial/spheres.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
+#include "../support/clump_state.hpp"
 #include "../support/sink_clump.hpp"
 
 namespace sphark {
@@ -78,6 +82,137 @@ TEST(SpmhdSubsets, ParticleStableStepsAreWhatMaxStableDtMinimises) {
   std::printf("neighbour limiter: %zu of %zu particles capped, steps from %.3e to %.3e\n", capped, s.particles(),
               least, most);
   EXPECT_GT(capped, 0u);
+}
+
+// The clump's gas moved by a smooth displacement (a few per cent of h), as at a block event.
+std::vector<Real> moved(const SpmhdScheme<3>& s, std::vector<Real> y) {
+  const std::size_t x0 = s.layout().offset(Field::Position);
+  for (std::size_t k = 0; k < 3 * s.particles(); ++k) y[x0 + k] += 2e-4 * std::sin(0.37 * static_cast<Real>(k));
+  return y;
+}
+
+// The largest |a_k - b_k| over the entries k of the active particles, relative to max |b_k|.
+Real relative_difference(const std::vector<Real>& a, const std::vector<Real>& b, const std::vector<std::size_t>& owner,
+                         const std::vector<char>& is_active) {
+  Real diff = 0, scale = 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (is_active[owner[k]]) diff = std::max(diff, std::abs(a[k] - b[k])), scale = std::max(scale, std::abs(b[k]));
+  return diff / scale;
+}
+
+TEST(SpmhdSubsets, AtMovedPositionsASubsetSolvesItsNeighbourhoodOnlyAndMatchesTheFullRhs) {
+  Clump c = clump(), twin = clump();
+  SpmhdScheme<3>& s = *c.scheme;
+  const std::size_t n = s.particles(), np = s.num_particles();
+  std::vector<Real> f(c.y.size()), full(c.y.size()), again(c.y.size());
+  ASSERT_EQ(s.rhs(0, c.y.data(), f.data()), 0) << s.last_error();
+  ASSERT_EQ(twin.scheme->rhs(0, twin.y.data(), f.data()), 0);
+  const std::vector<Real> y = moved(s, c.y);
+  std::vector<std::size_t> active;
+  for (std::size_t i : {5, 140}) active.push_back(i);  // (in a clump of 287, 27 rows' neighbours cover it all)
+  const long before = s.density_solves();
+  ASSERT_EQ(s.rhs_subset(1e-3, y.data(), active, f.data()), 0) << s.last_error();
+  const long subset_solves = s.density_solves() - before;
+  ASSERT_EQ(twin.scheme->rhs(1e-3, y.data(), full.data()), 0);  // the same history, a full evaluation
+  std::printf("%zu active of %zu: %ld density solves\n", active.size(), n, subset_solves);
+  EXPECT_GT(subset_solves, static_cast<long>(10 * active.size()));  // the rows' neighbours too
+  EXPECT_LT(subset_solves, static_cast<long>(n));
+  const std::vector<std::size_t> owner = s.entry_particles();
+  const StateLayout& L = s.layout();
+  const auto in = [&](Field fld, std::size_t k) { return k >= L.offset(fld) && k < L.offset(fld) + L.components(Species::Gas, fld) * n; };
+  std::vector<char> is_active(np, 0);
+  for (std::size_t i : active) is_active[i] = 1;
+  Real scale_b = 0;
+  for (std::size_t k = 0; k < y.size(); ++k)
+    if (in(Field::MagneticField, k) || in(Field::Psi, k)) scale_b = std::max(scale_b, std::abs(full[k]));
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    if (!is_active[owner[k]]) {
+      EXPECT_EQ(f[k], 0.0) << "entry " << k;
+    } else if (in(Field::MagneticField, k) || in(Field::Psi, k)) {  // c_h: the unsolved slots' last fast speeds
+      EXPECT_NEAR(f[k], full[k], 1e-9 * scale_b) << "entry " << k;
+    } else {
+      EXPECT_EQ(f[k], full[k]) << "entry " << k;
+    }
+  }
+  // A full evaluation there solves the remaining slots only, and is then the twin's bit for bit.
+  const long mid = s.density_solves();
+  ASSERT_EQ(s.rhs(1e-3, y.data(), again.data()), 0);
+  EXPECT_EQ(s.density_solves() - mid, static_cast<long>(n) - subset_solves);
+  for (std::size_t k = 0; k < y.size(); ++k) ASSERT_EQ(again[k], full[k]) << "entry " << k;
+}
+
+TEST(SpmhdSubsets, ActiveStableStepsBoundTheOthersByTheLimiterOfTheActiveOnes) {
+  Clump c = clump();
+  SpmhdScheme<3>& s = *c.scheme;
+  const std::size_t n = s.particles(), np = s.num_particles();
+  const std::size_t v0 = s.layout().offset(Field::Velocity);
+  for (int k = 0; k < 3; ++k) c.y[v0 + 3 * 7 + k] *= 300;  // particle 7: a short Courant step
+  std::vector<Real> f(c.y.size()), all(np), dt(np);
+  ASSERT_EQ(s.rhs(0, c.y.data(), f.data()), 0) << s.last_error();
+  ASSERT_EQ(s.particle_stable_dt(0, c.y.data(), f.data(), all.data()), 0);
+  std::vector<Real> courant, force;
+  ASSERT_EQ(s.stable_steps(0, c.y.data(), f.data(), courant, force), 0);
+  const std::vector<std::size_t> active{3, 7, 40, 41, 150};
+  ASSERT_EQ(s.active_stable_dt(0, c.y.data(), f.data(), active, dt.data()), 0) << s.last_error();
+  const std::vector<Real> h = s.h(), x = s.positions();
+  Real shortest = std::numeric_limits<Real>::infinity();
+  for (std::size_t i : active) {
+    EXPECT_EQ(dt[i], all[i]) << "active particle " << i;
+    shortest = std::min(shortest, all[i]);
+  }
+  EXPECT_EQ(dt[np - 1], shortest);  // the sink: the shortest active gas step
+  std::size_t bounded = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    if (std::binary_search(active.begin(), active.end(), b)) continue;
+    Real bound = std::numeric_limits<Real>::infinity();
+    for (std::size_t a : active) {
+      const Real r = (Eigen::Map<const Vec<3>>(&x[3 * a]) - Eigen::Map<const Vec<3>>(&x[3 * b])).norm();
+      if (r < CubicSpline<3>::support * std::max(h[a], h[b])) bound = std::min(bound, 4 * std::min(courant[a], force[a]));
+    }
+    EXPECT_EQ(dt[b], bound) << "particle " << b;
+    bounded += std::isfinite(bound);
+  }
+  std::printf("%zu particles bounded by %zu active ones\n", bounded, active.size());
+  EXPECT_GT(bounded, 4 * active.size());
+  EXPECT_LT(bounded + active.size(), n);  // some are beyond every active particle's reach
+}
+
+// Two clumps a unit apart (no gravity), then mirrored through the origin (x -> -x: every
+// distance, so every density, exactly as it was; the clumps trade places in the cell grid's
+// order, so the slots are renumbered). A subset of one clump solves its neighbourhood only; the
+// other clump's particles keep their own densities, and the subset's rows are the full rhs()'s.
+TEST(SpmhdSubsets, AfterTheSlotsAreRenumberedTheUnsolvedParticlesKeepTheirOwnDensities) {
+  SphereSpec spec;
+  spec.particles = 200;
+  spec.radius = 0.1;
+  ParticlePlacement place = evrard_sphere(spec);
+  const std::size_t half = place.size();
+  for (std::size_t a = 0; a < half; ++a)
+    for (int k = 0; k < 3; ++k) place.x.push_back(place.x[3 * a + k] + (k == 0 ? 1.0 : 0.0));
+  const std::size_t n = place.size();
+  SpmhdOptions o;
+  o.cleaning = Cleaning::Constrained;
+  SpmhdScheme<3> s(std::vector<Real>(n, place.particle_mass), o), twin(std::vector<Real>(n, place.particle_mass), o);
+  std::vector<Real> y(s.size(), 0), f(s.size()), full(s.size());
+  test::fill_clump_gas(place, s.layout(), y);
+  ASSERT_EQ(s.rhs(0, y.data(), f.data()), 0) << s.last_error();
+  ASSERT_EQ(twin.rhs(0, y.data(), f.data()), 0);
+  const std::vector<Real> rho_before = s.rho();
+  const std::size_t x0 = s.layout().offset(Field::Position);
+  for (std::size_t k = 0; k < 3 * n; ++k) y[x0 + k] = -y[x0 + k];
+  const std::vector<std::size_t> active{5, 140};  // in the first clump
+  const long before = s.density_solves();
+  ASSERT_EQ(s.rhs_subset(1e-3, y.data(), active, f.data()), 0) << s.last_error();
+  const std::size_t solved = static_cast<std::size_t>(s.density_solves() - before);
+  EXPECT_LT(solved, half);
+  const std::vector<Real> rho_subset = s.rho();
+  for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(rho_subset[i], rho_before[i], 1e-9 * rho_before[i]) << "particle " << i;
+  ASSERT_EQ(twin.rhs(1e-3, y.data(), full.data()), 0);
+  std::vector<char> is_active(n, 0);
+  for (std::size_t i : active) is_active[i] = 1;
+  const Real diff = relative_difference(f, full, s.entry_particles(), is_active);
+  std::printf("%zu of %zu solved; active rows within %.2e of the full rhs\n", solved, n, diff);
+  EXPECT_LT(diff, 1e-12);
 }
 
 }  // namespace

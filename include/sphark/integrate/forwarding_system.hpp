@@ -34,6 +34,10 @@ class ForwardingSystem : public OdeSystem {
   int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
     return inner_.particle_stable_dt(t, y, ydot, dt);
   }
+  int active_stable_dt(Real t, const Real* y, const Real* ydot, std::span<const std::size_t> active,
+                       Real* dt) override {
+    return inner_.active_stable_dt(t, y, ydot, active, dt);
+  }
 
  protected:
   OdeSystem& inner_;

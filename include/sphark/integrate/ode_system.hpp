@@ -110,6 +110,15 @@ class OdeSystem {
   virtual int particle_stable_dt(Real /*t*/, const Real* /*y*/, const Real* /*ydot*/, Real* /*dt*/) {
     throw std::logic_error("particle_stable_dt: this system reports no per-particle stable steps");
   }
+  // Block steps (issue #17): the stable steps after an evaluation of the particles `active`
+  // (ascending) at (t, y), ydot as above: an active particle's as particle_stable_dt gives it;
+  // another particle's the bound that the active ones put on it (+inf where they put none; its
+  // own step is the caller's, from its last evaluation). Default: particle_stable_dt, every
+  // particle's own step at (t, y) (which bounds it too).
+  virtual int active_stable_dt(Real t, const Real* y, const Real* ydot, std::span<const std::size_t> /*active*/,
+                               Real* dt) {
+    return particle_stable_dt(t, y, ydot, dt);
+  }
 };
 
 }  // namespace sphark

@@ -15,6 +15,7 @@
 #include <type_traits>
 
 #include "sphark/core/profile.hpp"
+#include "sphark/gravity/gravity_grad_h.hpp"
 #include "sphark/kernels/kernel_list.hpp"
 #include "sphark/operators/density_summation.hpp"
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
@@ -84,10 +85,13 @@ void SpmhdScheme<D, K>::sort_slots_by_cell() {
   permute(list_h_, 1);
   permute(radii_, 1);
   permute(divv_, 1);
-  if (halo_) {  // solved before the build (after a migration): they follow their particles
-    permute(rho_, 1);
-    permute(omega_, 1);
-  }
+  permute(t_h_slot_, 1);
+  permute(zeta_over_omega_, 1);
+  permute(solved_at_x_, 1);
+  // solved before the build: after a migration (distributed), or the slots a subset evaluation
+  // does not solve (serially): they follow their particles
+  permute(rho_, 1);
+  permute(omega_, 1);
   permute(perm_, 1);  // slot indices < 2^31: exact through a double
   if (halo_) permute(key_, 1);  // global ids < 2^32: exact too
 }
@@ -99,13 +103,51 @@ void SpmhdScheme<D, K>::sort_slots_by_cell() {
 // converges in one step fewer. Only a guess: the roots do not depend on it beyond the solve's
 // tolerance; the factor is clamped to [0.8, 1.25]. Starting from the iterates, not from h_, a
 // restart (resume: the iterates) starts every solve where the uninterrupted run does.
+// Each slot from its own solve's time (t_h_slot_: subset evaluations solve some slots only); a
+// slot already solved at these positions keeps its h.
 template <int D, class K>
 void SpmhdScheme<D, K>::predict_smoothing_lengths(Real t) {
-  const bool predict = opt_.predict_h && h_rate_known_ && opt_.evolve_particles && t != t_h_;
-  const Real dt_over_d = predict ? (t - t_h_) / D : 0;
+  if (t_h_slot_.size() != n_) t_h_slot_.assign(n_, t_h_);
+  if (solved_at_x_.size() != n_) solved_at_x_.assign(n_, 0);
+  const bool predict = opt_.predict_h && h_rate_known_ && opt_.evolve_particles;
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n_; ++i)
-    h_[i] = predict ? h_eval_[i] * std::clamp(1 + dt_over_d * divv_[i], Real(0.8), Real(1.25)) : h_eval_[i];
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (solved_at_x_[i]) continue;
+    const Real dt_over_d = predict && t != t_h_slot_[i] ? (t - t_h_slot_[i]) / D : 0;
+    h_[i] = dt_over_d != 0 ? h_eval_[i] * std::clamp(1 + dt_over_d * divv_[i], Real(0.8), Real(1.25)) : h_eval_[i];
+  }
+}
+
+template <int D, class K>
+void SpmhdScheme<D, K>::set_h_time(Real t) {
+  t_h_ = t;
+  t_h_slot_.assign(n_, t);
+}
+
+// The slots not yet solved at x_ among those prepare() serves: every slot, or (rhs_subset) the
+// slots of serve_particles_ and of their list neighbours, which their rows read (every slot
+// while some has never been solved: its rho would enter P, the speeds and c_h).
+template <int D, class K>
+void SpmhdScheme<D, K>::slots_to_solve() {
+  solve_slots_.clear();
+  if (serve_particles_.empty() || serve_particles_.size() >= n_ || !every_slot_solved_) {
+    for (std::size_t a = 0; a < n_; ++a)
+      if (!solved_at_x_[a]) solve_slots_.push_back(static_cast<std::uint32_t>(a));
+    return;
+  }
+  const NeighbourList& L = ns_.list();
+  slot_of_.resize(n_);
+  for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
+  std::vector<char>& wanted = solve_wanted_;
+  wanted.assign(n_, 0);
+  for (std::size_t i : serve_particles_) {
+    if (i >= n_) continue;  // a sink
+    const std::size_t a = slot_of_[i];
+    wanted[a] = 1;
+    for (std::size_t k = L.begin(a); k < L.end(a); ++k) wanted[L.indices[k]] = 1;
+  }
+  for (std::size_t a = 0; a < n_; ++a)
+    if (wanted[a] && !solved_at_x_[a]) solve_slots_.push_back(static_cast<std::uint32_t>(a));
 }
 
 // Verlet lists with per-particle radii R_i = support * list_h_i * (1 + skin). A pair closer than
@@ -139,9 +181,13 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
       }
     }
     ScopedPhase timer(Phase::DensityH);
-    const DensityStats st = solve_density(x);
+    slots_to_solve();  // (after a build: the new slots)
+    const bool all = solve_slots_.size() == n_;
+    const DensityStats st = solve_density(x, all ? nullptr : &solve_slots_);
     if (st.outside_list == 0) {
-      t_h_ = t;
+      if (all) set_h_time(t), every_slot_solved_ = true;
+      density_solves_ += static_cast<long>(solve_slots_.size());
+      for (std::uint32_t a : solve_slots_) t_h_slot_[a] = t, solved_at_x_[a] = 1;
       if (st.not_converged == 0) return 0;
       error_ = "density: h iteration did not converge for " + std::to_string(st.not_converged) + " particle(s)";
       return 1;  // recoverable: a smaller step moves the particles less
@@ -162,7 +208,8 @@ constexpr Real kGuessReach = 1.03;
 }  // namespace
 
 template <int D, class K>
-typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x) {
+typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real* x,
+                                                                          const std::vector<std::uint32_t>* only) {
   const int threads = omp_get_max_threads();
   const int lanes = simd_lanes(pair_loop_simd());
   const std::size_t room = static_cast<std::size_t>(lanes) * (max_list_ + 1), stride = 2 * room;
@@ -179,12 +226,15 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   if (pair_loop_simd() == PairLoopSimd::Sse2) sums = spmhd_detail::density_sums<simd::Real2, D, K>;
   std::size_t not_converged = 0, outside = 0, iterations = 0;
   Real h_max = 0;
+  const std::size_t rows = only ? only->size() : n_;
+  const bool with_zeta = opt_.self_gravity && D == 3;  // the grad-h term of the gravity (spmhd_gravity.cpp)
 #pragma omp parallel reduction(+ : not_converged, outside, iterations) reduction(max : h_max)
   {
     Real* rc = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
     Real* mc = rc + room;
 #pragma omp for schedule(dynamic, 64)
-    for (std::size_t i = 0; i < n_; ++i) {
+    for (std::size_t r = 0; r < rows; ++r) {
+      const std::size_t i = only ? (*only)[r] : r;
       const Real h_list = list_h_served_[i];
       // Candidates: every listed neighbour that a trial h <= h_reach can reach, in list order,
       // neighbour j in lane (particle number of j) mod W: entry c W + l of lane l. Each lane's
@@ -241,6 +291,10 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       h_[i] = hh;
       rho_[i] = it.rho_next();
       omega_[i] = 1 + hh / (D * rho_[i]) * it.drho_dh;  // dh/drho = -h / (D rho)
+      if (with_zeta) {  // from the same candidates (every one within reach of hh: zero beyond)
+        if (hh > h_reach) gather(h_list);
+        zeta_over_omega_[i] = gravitational_zeta_of(rc, mc, nc, lanes, m[i], hh, rho_[i]) / omega_[i];
+      }
       h_max = std::max(h_max, hh);
       if (root_beyond_list<D>(density_at, hh, h_list, m_eta, tol)) {
         ++outside;
@@ -250,6 +304,26 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   }
   h_iterations_ += static_cast<double>(iterations);
   return {not_converged, outside, iterations, h_max};
+}
+
+// zeta_a of the gravitational grad-h term (Price & Monaghan 2007, §3; gravity/gravity_grad_h.hpp)
+// at the solved h_a and rho_a, over the density solve's candidates (r, m; padding m = 0), lane by
+// lane as the density sums: candidates beyond the support add exact zeros, so the lists' reach
+// does not change a bit of it.
+template <int D, class K>
+Real SpmhdScheme<D, K>::gravitational_zeta_of(const Real* r, const Real* m, std::size_t count, int lanes, Real m_a,
+                                              Real h_a, Real rho_a) {
+  if constexpr (D == 3) {
+    Real sum = zeta_init<K>(m_a, h_a);
+    for (int l = 0; l < lanes; ++l) {
+      Real lane = 0;
+      for (std::size_t c = static_cast<std::size_t>(l); c < count; c += static_cast<std::size_t>(lanes))
+        lane += zeta_pair<K>(m[c], r[c], h_a);
+      sum += lane;
+    }
+    return zeta_finish(sum, h_a, rho_a);
+  }
+  return 0;
 }
 
 // The first guess of h: eta (volume / N)^(1/D) from the bounding box of all positions.
@@ -282,7 +356,11 @@ void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
   template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real, const Real*); \
   template void SpmhdScheme<D, K>::predict_smoothing_lengths(Real);                  \
-  template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*);
+  template void SpmhdScheme<D, K>::set_h_time(Real);                                 \
+  template Real SpmhdScheme<D, K>::gravitational_zeta_of(const Real*, const Real*, std::size_t, int, Real, Real, Real); \
+  template void SpmhdScheme<D, K>::slots_to_solve();                                 \
+  template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*,               \
+                                                                            const std::vector<std::uint32_t>*);
 #define SPHARK_SPMHD_DENSITY_2D_3D(K) SPHARK_SPMHD_DENSITY(2, K<2>) SPHARK_SPMHD_DENSITY(3, K<3>)
 SPHARK_KERNELS(SPHARK_SPMHD_DENSITY_2D_3D)
 #undef SPHARK_SPMHD_DENSITY_2D_3D

@@ -92,7 +92,7 @@ void SpmhdScheme<D, K>::restore_migrated(std::span<const Real> data) {
     h_eval_[a] = p[0], h_[a] = p[1], rho_[a] = p[2], omega_[a] = p[3], divv_[a] = p[4];
     for (int k = 0; k < D; ++k) x_[D * a + k] = p[5 + k];
   }
-  t_h_ = data[W * n_];
+  set_h_time(data[W * n_]);
   const int flags = static_cast<int>(data[W * n_ + 1]);
   solved_ = (flags & 1) != 0;
   h_rate_known_ = (flags & 2) != 0;
@@ -177,7 +177,7 @@ int SpmhdScheme<D, K>::distributed_prepare_positions(Real t, const Real* y) {
     error_ = message;
     return code;
   }
-  t_h_ = t;
+  set_h_time(t);
   solved_ = true;
   return 0;
 }

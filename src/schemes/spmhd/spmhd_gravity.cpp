@@ -4,7 +4,8 @@
 // (Price & Monaghan 2007, §3; gravity/gravity_grad_h.hpp):
 //   a_a += -(G/2) sum_b m_b [ zeta_a/Omega_a grad_a W_ab(h_a) + zeta_b/Omega_b grad_a W_ab(h_b) ]
 //   zeta_a = (dh_a/drho_a) sum_b m_b dphi(r_ab, h_a)/dh_a   (b = a included)
-// The pair sums run over the scheme's neighbour lists (minimum image in a periodic box; the tree
+// zeta is summed in the density solve, over its candidates at the solved h
+// (spmhd_density.cpp). The pair sums run over the scheme's neighbour lists (minimum image in a periodic box; the tree
 // uses the positions as given: isolated gravity, see docs/gravity.md). Gather form: each particle
 // writes only its own acceleration, results independent of the thread count.
 //
@@ -22,40 +23,6 @@
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
 
 namespace sphark {
-
-template <int D, class K>
-void SpmhdScheme<D, K>::gravitational_zeta(const std::vector<std::uint32_t>* only) {
-  if constexpr (D == 3) {
-    const NeighbourList& L = ns_.list();
-    const Real* x = x_.data();
-    const MinimumImage<3> image(ns_.box());  // x_a - x_b as ns_.separation, without its divisions
-    // With `only` (the active rows of a subset evaluation): the slots those rows read, themselves
-    // and their list neighbours; the others keep their last values, read by no active row.
-    zeta_slots_.clear();
-    if (only) {
-      zeta_needed_.assign(n_, 0);
-      for (std::uint32_t a : *only) {
-        zeta_needed_[a] = 1;
-        for (std::size_t k = L.begin(a); k < L.end(a); ++k) zeta_needed_[L.indices[k]] = 1;
-      }
-      for (std::size_t a = 0; a < n_; ++a)
-        if (zeta_needed_[a]) zeta_slots_.push_back(static_cast<std::uint32_t>(a));
-    }
-    const std::size_t rows = only ? zeta_slots_.size() : n_;
-#pragma omp parallel for schedule(dynamic, 64)
-    for (std::size_t i = 0; i < rows; ++i) {
-      const std::size_t a = only ? zeta_slots_[i] : i;
-      const Real ha = h_[a], reach2 = (K::support * ha) * (K::support * ha);
-      Real sum = zeta_init<K>(ms_[a], ha);
-      for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
-        const std::size_t b = L.indices[k];
-        const Real r2 = image(x + 3 * a, x + 3 * b).squaredNorm();
-        if (r2 < reach2) sum += zeta_pair<K>(ms_[b], std::sqrt(r2), ha);
-      }
-      zeta_over_omega_[a] = zeta_finish(sum, ha, rho_[a]) / omega_[a];
-    }
-  }
-}
 
 // Slot a's neighbours b (list order) that can be within support * max(h_a, h_b): a branch-free
 // pass over the row (about half of a row lies beyond, in no predictable pattern), so that the
@@ -95,7 +62,6 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
       sources.wanted = gravity_wanted_.data();
     }
     potential_energy_ = gravity_->compute(sources, gravity_acc_.data(), gravity_potential_.data());
-    gravitational_zeta(only);
     const Real* x = x_.data();
     const MinimumImage<3> image(ns_.box());
     kernel_scale_.resize(n_);  // each particle's f_over_r_scale, once instead of once per pair
@@ -139,7 +105,6 @@ Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
 }
 
 #define SPHARK_SPMHD_GRAVITY(D, K)                          \
-  template void SpmhdScheme<D, K>::gravitational_zeta(const std::vector<std::uint32_t>*);   \
   template std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t, const MinimumImage<D>&,            \
                                                                 std::vector<std::uint32_t>&) const;            \
   template void SpmhdScheme<D, K>::gravity_pass(Real*, const std::vector<std::uint32_t>*); \

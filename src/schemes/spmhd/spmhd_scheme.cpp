@@ -125,11 +125,12 @@ void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
   if (with_rate && !std::all_of(data.begin() + n_, data.end(), [](Real v) { return std::isfinite(v); }))
     throw std::invalid_argument("SpmhdScheme::resume: a velocity divergence or the time of h is not finite");
   for (std::size_t s = 0; s < n_; ++s) h_[s] = h_eval_[s] = h[perm_[s]];  // slot s holds particle perm_[s]
+  solved_at_x_.assign(n_, 0);  // every slot solves afresh from these
   h_unset_ = false;
   solved_ = false;  // the next evaluation solves from these starts
   if (with_rate) {
     for (std::size_t s = 0; s < n_; ++s) divv_[s] = data[n_ + perm_[s]];
-    t_h_ = data[2 * n_];
+    set_h_time(data[2 * n_]);
     h_rate_known_ = true;
   }
   built_ = false;
@@ -153,6 +154,9 @@ void SpmhdScheme<D, K>::allocate_per_particle() {
   divB_.assign(n_, 0);
   divv_.assign(n_, 0);
   h_rate_known_ = false;
+  t_h_slot_.assign(n_, t_h_);
+  solved_at_x_.assign(n_, 0);
+  every_slot_solved_ = false;
   scratch_.assign(layout_.size(), 0);
   inv_omega_rho2_.assign(n_, 0);
   list_h_.assign(n_, 0);
@@ -270,9 +274,14 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
   } else if (opt_.evolve_particles) {
     // Density, h and Omega depend on the positions only: skip the solve when they are unchanged
     // (bit for bit) since the last call, e.g. max_stable_dt or stiff_diagonal after rhs.
+    // Subset evaluations solve only the slots their rows read (solved_at_x_).
     gather(y + layout_.offset(Field::Position), D, x_from_state_, n_);
-    if (!built_ || x_from_state_ != x_) {
+    const bool moved = !built_ || x_from_state_ != x_;
+    if (moved) {
       std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
+      solved_at_x_.assign(n_, 0);
+    }
+    if (moved || std::find(solved_at_x_.begin(), solved_at_x_.end(), 0) != solved_at_x_.end()) {
       if (const int rc = ensure_neighbours_and_density(t, x)) {
         built_ = false;  // x_ is not what the lists and h were made for
         return rc;

@@ -49,12 +49,15 @@ void SpmhdScheme<D, K>::change_particles(const std::vector<std::size_t>& kept, s
   // particle order: the last iterates of the h solves and div v (the next solve's start,
   // predict_smoothing_lengths) move with their particles
   const std::vector<Real> h_old = in_particle_order(h_eval_, 1, out_h_eval_), divv_old = div_v();
-  std::vector<Real> h_new(kept.size()), m_new(kept.size()), divv_new(kept.size());
+  std::vector<Real> th_old(n_, t_h_);  // and the times of those solves
+  for (std::size_t s = 0; s < n_ && s < t_h_slot_.size(); ++s) th_old[perm_[s]] = t_h_slot_[s];
+  std::vector<Real> h_new(kept.size()), m_new(kept.size()), divv_new(kept.size()), th_new(kept.size());
   for (std::size_t i = 0; i < kept.size(); ++i) {
     if (kept[i] >= n_) throw std::invalid_argument("SpmhdScheme::change_particles: particle out of range");
     h_new[i] = h_old[kept[i]];
     m_new[i] = m_[kept[i]];
     divv_new[i] = divv_old[kept[i]];
+    th_new[i] = th_old[kept[i]];
   }
   const bool rate_known = h_rate_known_;
   n_ = kept.size();
@@ -65,6 +68,7 @@ void SpmhdScheme<D, K>::change_particles(const std::vector<std::size_t>& kept, s
   x_.assign(D * n_, 0);
   allocate_per_particle();
   divv_ = std::move(divv_new);
+  t_h_slot_ = std::move(th_new);
   h_rate_known_ = rate_known;
   built_ = false;
   ++version_;

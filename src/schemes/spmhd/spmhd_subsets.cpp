@@ -3,16 +3,22 @@
 // particle's own stable step.
 //
 // Work: the pair loops (seed 000 §II: the force pass, and with self-gravity the grad-h term of
-// Price & Monaghan 2007) run over the active gas particles only. What the active particles'
-// rows read from their neighbours is computed for all particles: density, h and Omega (the
-// summation, memoised on the exact positions, so repeated subset calls at one state solve it
-// once), P, the signal speeds; the gravity tree (one walk for all targets) and the sink forces
-// are computed for all and kept for the active particles. So a fast evaluation costs the
-// active rows plus O(N) per-particle work, and a tree walk with gravity.
+// Price & Monaghan 2007) run over the active gas particles only, and so does the density / h
+// solve (4)-(5): over the active particles and their list neighbours, whose values the active
+// rows read (memoised per slot on the exact positions: repeated calls at one state solve each
+// slot once, and a full rhs() there solves only the slots not yet solved). Each solve starts from
+// its slot's own last iterate and time. Computed for all particles and kept for the active
+// ones: the neighbour lists (Verlet, rebuilt for all when some list is too short), P and the
+// signal speeds (O(N) arithmetic; the global c_h is the largest fast speed, of the unsolved slots
+// as last solved), the gravity tree (built for all, walked for the active targets; the unsolved
+// slots soften with their predicted h, which no active pair reads) and the sink forces.
+// So a fast evaluation costs the active rows and their neighbours' solves, O(N) arithmetic, and
+// the tree and list builds.
 #include <algorithm>
-#include <stdexcept>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <stdexcept>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
@@ -20,13 +26,29 @@
 #include "sphark/schemes/spmhd/spmhd_scheme.hpp"
 
 namespace sphark {
+namespace {
+// While alive, the scheme's prepare() serves the particles `active` only (serve_particles_).
+class ServeOnly {
+ public:
+  ServeOnly(std::span<const std::size_t>& served, std::span<const std::size_t> active) : served_(served) { served_ = active; }
+  ~ServeOnly() { served_ = {}; }
+  ServeOnly(const ServeOnly&) = delete;
+  ServeOnly& operator=(const ServeOnly&) = delete;
+
+ private:
+  std::span<const std::size_t>& served_;
+};
+}  // namespace
 
 template <int D, class K>
 int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) {
   if (halo_) throw std::logic_error("SpmhdScheme::rhs_subset: not for a distributed scheme");
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
-  if (const int rc = prepare(t, y); rc != 0) return rc;
+  {
+    const ServeOnly served(serve_particles_, active);
+    if (const int rc = prepare(t, y); rc != 0) return rc;
+  }
   std::fill(ydot, ydot + layout_.size(), 0.0);
   slot_of_.resize(n_);
   for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
@@ -54,28 +76,39 @@ int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::si
 // (MRIStep) before a shock from a short-stepping neighbour reaches it.
 constexpr Real kNeighbourStepFactor = 4;
 
+// Each gas particle's own step min(Courant, force criterion), read by slot (own_of_slot_),
+// after stable_steps at (t, y) (which prepares the lists for y).
+template <int D, class K>
+int SpmhdScheme<D, K>::own_steps_by_slot(Real t, const Real* y, const Real* ydot) {
+  if (halo_) throw std::logic_error("SpmhdScheme: per-particle steps are not for a distributed scheme");
+  if (stable_steps(t, y, ydot, courant_steps_, force_steps_) != 0) return 1;  // error_ says why
+  own_of_slot_.resize(n_);
+  for (std::size_t a = 0; a < n_; ++a) own_of_slot_[a] = std::min(courant_steps_[perm_[a]], force_steps_[perm_[a]]);
+  return 0;
+}
+
+// The least own step among slot a's neighbours within the kernel support (either h).
+template <int D, class K>
+Real SpmhdScheme<D, K>::least_neighbour_step(std::size_t a, const MinimumImage<D>& image) const {
+  const NeighbourList& L = ns_.list();
+  const Real* x = x_.data();
+  Real least = std::numeric_limits<Real>::infinity();
+  for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
+    const std::size_t b = L.indices[k];
+    if (!(own_of_slot_[b] < least)) continue;  // cannot lower the minimum: no distance needed
+    const Real reach = K::support * std::max(h_[a], h_[b]);
+    if (image(x + D * a, x + D * b).squaredNorm() < reach * reach) least = own_of_slot_[b];
+  }
+  return least;
+}
+
 template <int D, class K>
 int SpmhdScheme<D, K>::particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) {
-  if (halo_) throw std::logic_error("SpmhdScheme::particle_stable_dt: not for a distributed scheme");
-  if (stable_steps(t, y, ydot, courant_steps_, force_steps_) != 0) return 1;  // error_ says why
-  std::vector<Real>& own = courant_steps_;  // particle order
-  for (std::size_t a = 0; a < n_; ++a) own[a] = std::min(courant_steps_[a], force_steps_[a]);
-  std::vector<Real>& own_of_slot = force_steps_;  // reused: slot order, read along the rows
-  for (std::size_t a = 0; a < n_; ++a) own_of_slot[a] = own[perm_[a]];
-  const NeighbourList& L = ns_.list();  // slots; stable_steps prepared the lists for y
+  if (own_steps_by_slot(t, y, ydot) != 0) return 1;
   const MinimumImage<D> image(ns_.box());
-  const Real* x = x_.data();
 #pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t a = 0; a < n_; ++a) {
-    Real least = std::numeric_limits<Real>::infinity();
-    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
-      const std::size_t b = L.indices[k];
-      if (!(own_of_slot[b] < least)) continue;  // cannot lower the minimum: no distance needed
-      const Real reach = K::support * std::max(h_[a], h_[b]);
-      if (image(x + D * a, x + D * b).squaredNorm() < reach * reach) least = own_of_slot[b];
-    }
-    dt[perm_[a]] = std::min(own_of_slot[a], kNeighbourStepFactor * least);
-  }
+  for (std::size_t a = 0; a < n_; ++a)
+    dt[perm_[a]] = std::min(own_of_slot_[a], kNeighbourStepFactor * least_neighbour_step(a, image));
   // A sink pulls on every gas particle, hardest on the closest ones, which orbit it on the
   // shortest steps: it takes the shortest gas step (as in the global leapfrog, whose one step
   // is that minimum), so its pair forces with the gas are sampled as often as theirs.
@@ -84,9 +117,49 @@ int SpmhdScheme<D, K>::particle_stable_dt(Real t, const Real* y, const Real* ydo
   return 0;
 }
 
+// After an evaluation of `active`: the limiter from the active side only (Phantom's wake-up,
+// Price et al. 2018 §2.3.4: a neighbour whose step is more than 4 x an active particle's own).
+template <int D, class K>
+int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot, std::span<const std::size_t> active,
+                                        Real* dt) {
+  if (active.size() >= num_particles()) return particle_stable_dt(t, y, ydot, dt);
+  const ServeOnly served(serve_particles_, active);  // (own steps are read for them and their neighbours)
+  if (own_steps_by_slot(t, y, ydot) != 0) return 1;
+  constexpr Real inf = std::numeric_limits<Real>::infinity();
+  std::fill(dt, dt + num_particles(), inf);
+  slot_of_.resize(n_);
+  for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
+  const NeighbourList& L = ns_.list();
+  const MinimumImage<D> image(ns_.box());
+  const Real* x = x_.data();
+  active_steps_.clear();
+  for (std::size_t i : active) {
+    if (i >= n_) continue;  // a sink: below
+    const std::size_t a = slot_of_[i];
+    active_steps_.push_back(std::min(own_of_slot_[a], kNeighbourStepFactor * least_neighbour_step(a, image)));
+    const Real cap = kNeighbourStepFactor * own_of_slot_[a];
+    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {  // the bound on each neighbour
+      const std::size_t b = L.indices[k];
+      Real& dt_b = dt[perm_[b]];
+      if (!(cap < dt_b)) continue;
+      const Real reach = K::support * std::max(h_[a], h_[b]);
+      if (image(x + D * a, x + D * b).squaredNorm() < reach * reach) dt_b = cap;
+    }
+  }
+  Real shortest = inf;  // over the active gas: a sink takes the shortest gas step
+  std::size_t next = 0;
+  for (std::size_t i : active)
+    if (i < n_) shortest = std::min(shortest, dt[i] = active_steps_[next++]);
+  std::fill(dt + n_, dt + num_particles(), shortest);
+  return 0;
+}
+
 #define SPHARK_SPMHD_SUBSETS(D, K)                                                                        \
   template int SpmhdScheme<D, K>::rhs_subset(Real, const Real*, std::span<const std::size_t>, Real*);   \
-  template int SpmhdScheme<D, K>::particle_stable_dt(Real, const Real*, const Real*, Real*);
+  template int SpmhdScheme<D, K>::particle_stable_dt(Real, const Real*, const Real*, Real*);              \
+  template int SpmhdScheme<D, K>::own_steps_by_slot(Real, const Real*, const Real*);                      \
+  template Real SpmhdScheme<D, K>::least_neighbour_step(std::size_t, const MinimumImage<D>&) const;      \
+  template int SpmhdScheme<D, K>::active_stable_dt(Real, const Real*, const Real*, std::span<const std::size_t>, Real*);
 #define SPHARK_SPMHD_SUBSETS_2D_3D(K) SPHARK_SPMHD_SUBSETS(2, K<2>) SPHARK_SPMHD_SUBSETS(3, K<3>)
 SPHARK_KERNELS(SPHARK_SPMHD_SUBSETS_2D_3D)
 #undef SPHARK_SPMHD_SUBSETS_2D_3D

@@ -109,10 +109,15 @@ class SpmhdScheme final : public OdeSystem {
   // positions), the gravity tree and the sink forces are computed for all and kept for the
   // active particles. particle_stable_dt: min(Courant, force criterion) of each gas particle
   // (stable_steps), capped at 4 x that of any neighbour within the kernel support (Saitoh &
-  // Makino 2009); a sink's is the shortest gas step.
+  // Makino 2009); a sink's is the shortest gas step. active_stable_dt: that of each active gas
+  // particle; of every other gas particle 4 x the least own step of its active neighbours (the
+  // limiter's wake-up, as Phantom's); of a sink the shortest active gas step. Its work: the rows
+  // of the active particles, and O(N) per-particle arithmetic.
   bool supports_subsets() const override { return opt_.evolve_particles && !halo_; }
   int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override;
   int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override;
+  int active_stable_dt(Real t, const Real* y, const Real* ydot, std::span<const std::size_t> active,
+                       Real* dt) override;
 
   // Number of RHS evaluations so far.
   long rhs_evaluations() const { return rhs_calls_; }
@@ -128,6 +133,9 @@ class SpmhdScheme final : public OdeSystem {
   std::size_t interacting_pairs() const { return interacting_pairs_; }
   // Newton (or bisection) steps of the h solve so far, summed over particles.
   double h_iterations_total() const { return h_iterations_; }
+  // Density / h solves so far, one per particle solved (not counting attempts retried with longer
+  // lists; subset evaluations solve fewer than N).
+  long density_solves() const { return density_solves_; }
   // Sum of interacting_pairs() over all RHS evaluations so far.
   double pair_interactions_total() const { return pairs_total_; }
 
@@ -194,12 +202,15 @@ class SpmhdScheme final : public OdeSystem {
   // 0, or 1 (recoverable, error_ says why) when h cannot be solved or outgrows the box.
   int ensure_neighbours_and_density(Real t, const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
   void predict_smoothing_lengths(Real t);  // the solve's initial guesses at t (spmhd_density.cpp)
+  void slots_to_solve();  // solve_slots_: the slots prepare() must solve, of those it serves
+  void set_h_time(Real t);  // every slot's h solved at t
   int build_neighbours(const Real* x);  // lists for list_h_, then slots in cell order
   struct DensityStats {
     std::size_t not_converged = 0, outside_list = 0, iterations = 0;
     Real h_max = 0;
   };
-  DensityStats solve_density(const Real* x);  // h_[i] <= list_h_served_[i]; sets list_h_needed_
+  // the slots `only` (all when null); h_[i] <= list_h_served_[i]; sets list_h_needed_
+  DensityStats solve_density(const Real* x, const std::vector<std::uint32_t>* only = nullptr);
   void euler_potential_field(const Real* x, const Real* alpha);
   void pair_loop_arrays(const Real* y);            // the per-particle arrays of force_pass
   // The pair loops over the slots `only` (ascending), or all slots when null.
@@ -208,7 +219,9 @@ class SpmhdScheme final : public OdeSystem {
   void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
-  void gravitational_zeta(const std::vector<std::uint32_t>* only);  // zeta_a / Omega_a of the grad-h term (slots `only` read)
+  // zeta_a of the grad-h term from a density solve's candidates (spmhd_density.cpp)
+  static Real gravitational_zeta_of(const Real* r, const Real* m, std::size_t count, int lanes, Real m_a, Real h_a,
+                                    Real rho_a);
   Real force_time_step(const Real* ydot) const;    // min force_courant sqrt(h / |dv/dt|)
   Real force_step(std::size_t slot, const Real* ydot) const;  // force_courant sqrt(h / |dv/dt|) of one slot
   // C h / v_sig of one slot, v: velocities in slot order (v_) or null (+inf without a signal speed;
@@ -268,7 +281,15 @@ class SpmhdScheme final : public OdeSystem {
   // state's positions equal them bit for bit). Slot order, as all below.
   std::vector<Real> x_;
   std::vector<Real> h_, rho_, omega_, P_, sound_speed_, fast_speed_, B_, divB_, divv_;
-  Real t_h_ = 0;               // the time of the state h_ was solved for
+  Real t_h_ = 0;               // the time of the state h_ was solved for (all slots)
+  // Subset evaluations (rhs_subset) solve the slots their rows read only: per slot the time its h
+  // was solved at, and whether it is solved at x_; the particles prepare() serves (empty: all).
+  std::vector<Real> t_h_slot_;
+  std::vector<char> solved_at_x_;
+  bool every_slot_solved_ = false;  // since the particles last changed (allocate_per_particle)
+  std::span<const std::size_t> serve_particles_;
+  std::vector<std::uint32_t> solve_slots_;
+  std::vector<char> solve_wanted_;
   bool h_rate_known_ = false;  // divv_ is from a force pass after the last solve (predict_smoothing_lengths)
   std::vector<Real> tensile_weight_;  // tensile_weights
   std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
@@ -277,6 +298,9 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<std::uint32_t> active_slots_;    // rhs_subset: the active gas particles' slots
   std::vector<std::uint32_t> slot_of_;         // rhs_subset: particle -> slot
   std::vector<Real> courant_steps_, force_steps_;  // particle_stable_dt
+  std::vector<Real> own_of_slot_, active_steps_;   // active_stable_dt
+  int own_steps_by_slot(Real t, const Real* y, const Real* ydot);
+  Real least_neighbour_step(std::size_t a, const MinimumImage<D>& image) const;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
   long evaluated_version_ = -1;
   // Per-particle factors of the pair loop (init): one record per particle of what its neighbours
@@ -295,6 +319,7 @@ class SpmhdScheme final : public OdeSystem {
   std::size_t max_list_ = 0;        // longest neighbour list of the current build
   std::size_t interacting_pairs_ = 0;
   double pairs_total_ = 0, h_iterations_ = 0;
+  long density_solves_ = 0;
   Real cleaning_speed_ = 0;         // global c_h (the largest c_h,a with local_ch)
   // Self-gravity (opt_.self_gravity): the solver; its sources' positions and h, accelerations
   // (D x n) and potentials in particle order (spmhd_gravity.cpp says why); zeta_a / Omega_a of
@@ -302,8 +327,7 @@ class SpmhdScheme final : public OdeSystem {
   std::optional<BarotropicEos> eos_;  // opt_.barotropic
   std::unique_ptr<SelfGravity> gravity_;
   std::vector<Real> gravity_x_, gravity_h_, gravity_acc_, gravity_potential_, zeta_over_omega_;
-  std::vector<std::uint8_t> zeta_needed_, gravity_wanted_;  // gravitational_zeta, the tree's targets of a subset
-  std::vector<std::uint32_t> zeta_slots_;
+  std::vector<std::uint8_t> gravity_wanted_;  // the tree's targets of a subset
   std::vector<Real> kernel_scale_;  // K::f_over_r_scale(h) per slot (gravity_pass)
   std::size_t entries_within_reach(std::size_t a, const MinimumImage<D>& image, std::vector<std::uint32_t>& near) const;
   GravitySources gravity_sources() const { return {gravity_x_.data(), m_.data(), gravity_h_.data(), n_}; }
