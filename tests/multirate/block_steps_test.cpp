@@ -1,6 +1,7 @@
 // "leapfrog-blocks": Phantom-style power-of-two block steps on the KDK leapfrog (issue #17).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -214,6 +215,33 @@ TEST(BlockSteps, AParticleWhoseStableStepFallsIsWokenUp) {
     const Real order = std::log2(e[k - 1] / e[k]);
     std::printf("with a wake-up: error %.3e -> %.3e, order %.3f\n", e[k - 1], e[k], order);
     EXPECT_GE(order, 2 - 0.3) << "halving " << k;
+  }
+}
+
+// Wake-up by a bound that the active particles put on another (OdeSystem::active_stable_dt),
+// given at the one event in [0.52, 0.521) only: particle 0 (level 0, its step [0.5, 0.6)) is
+// woken at the next event, not at 0.6; with no bound it is not woken.
+TEST(BlockSteps, ABoundFromTheActiveParticlesWakesAParticleAtTheNextEvent) {
+  const Real h = 0.1;
+  for (const Real t_on : {0.52, 2.0}) {
+    BoundingEnsemble sys(t_on, t_on + 1e-3);  // one event of the fast grid h / 128 in it
+    sys.record_calls = true;
+    const std::vector<Real> y0 = initial_state(sys);
+    auto stepper = make_stepper(sys, blocks(h), 0, y0.data());  // levels: slow 0, fast 7
+    std::vector<Real> y(y0.size());
+    Real t = 0;
+    ASSERT_EQ(stepper->advance(1.0, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    std::vector<Real> zero;  // the times at which particle 0 was evaluated
+    for (const auto& call : sys.calls)
+      if (!call.active.empty() && call.active.front() == 0) zero.push_back(call.t);
+    const bool woken = std::any_of(zero.begin(), zero.end(), [](Real tc) { return tc > 0.52 && tc < 0.6 - 1e-9; });
+    EXPECT_EQ(woken, t_on < 1) << "bound from t=" << t_on;
+    if (t_on < 1) {
+      Real first = 2;
+      for (Real tc : zero)
+        if (tc > 0.52) first = std::min(first, tc);
+      EXPECT_LE(first, 0.52 + 2 * h / 128 + 1e-12);  // the event after the bound
+    }
   }
 }
 

@@ -1,6 +1,11 @@
 #pragma once
 // Oscillator ensembles whose reported stable steps change in time (their dynamics does not):
 // only the partition moves particles between levels (repartition and restart tests).
+#include <algorithm>
+#include <limits>
+#include <span>
+#include <vector>
+
 #include "oscillator_ensemble.hpp"
 
 namespace sphark::test {
@@ -50,6 +55,28 @@ class HalvingEnsemble : public OscillatorEnsemble {
 
  private:
   Real t_;
+};
+
+// Every particle's own step is the ensemble's; an evaluation of the fast particle 6 at a time in
+// [t_on, t_off) bounds particle 0 to 0.01 (OdeSystem::active_stable_dt: a neighbour's bound,
+// given at those events only); particles no active one bounds get +inf.
+class BoundingEnsemble : public OscillatorEnsemble {
+ public:
+  BoundingEnsemble(Real t_on, Real t_off)
+      : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_on_(t_on), t_off_(t_off) {}
+  int active_stable_dt(Real t, const Real* y, const Real* ydot, std::span<const std::size_t> active, Real* dt) override {
+    std::vector<Real> own(n());
+    OscillatorEnsemble::particle_stable_dt(t, y, ydot, own.data());
+    std::fill(dt, dt + n(), std::numeric_limits<Real>::infinity());
+    for (std::size_t i : active) dt[i] = own[i];
+    const bool six = std::find(active.begin(), active.end(), std::size_t{6}) != active.end();
+    if (six && t >= t_on_ && t < t_off_ && std::find(active.begin(), active.end(), std::size_t{0}) == active.end())
+      dt[0] = 0.01;
+    return 0;
+  }
+
+ private:
+  Real t_on_, t_off_;
 };
 
 }  // namespace sphark::test
