@@ -275,9 +275,29 @@ void KdTreeNeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order)
 }
 
 template <int D>
+void KdTreeNeighbourSearch<D>::keep(const std::vector<std::uint32_t>& kept) {
+  std::vector<std::uint32_t>& inverse = scratch_u32_;
+  keep_rows(list_, kept, spans_, inverse);
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    for (int k = 0; k < D; ++k) ppts_[D * i + k] = ppts_[D * kept[i] + k];
+    pr2_[i] = pr2_[kept[i]];
+  }
+  ppts_.resize(D * kept.size());
+  pr2_.resize(kept.size());
+  std::size_t w = 0;  // the tree order, renamed (its nodes dropped)
+  for (std::uint32_t a : index_)
+    if (inverse[a] != kGoneParticle) index_[w++] = inverse[a];
+  index_.resize(w);
+  node_.clear();
+  leaves_.clear();
+  n_ = kept.size();
+}
+
+template <int D>
 void KdTreeNeighbourSearch<D>::query(const Vec<D>& p, Real radius, std::vector<std::uint32_t>& out) const {
   out.clear();
   if (list_.offsets.empty()) throw std::logic_error("KdTreeNeighbourSearch::query before build");
+  if (node_.empty() && n_ > 0) throw std::logic_error("KdTreeNeighbourSearch::query after keep(): build again");
   if (box_ && radius > radius_)
     throw std::invalid_argument("KdTreeNeighbourSearch::query: periodic query radius exceeds the build radius");
   if (n_ == 0) return;

@@ -279,6 +279,53 @@ void NeighbourSearch<D>::renumber(const std::vector<std::uint32_t>& order) {
   std::copy(swap_u32_.begin(), swap_u32_.begin() + n, cell_of_.begin());
 }
 
+void keep_rows(NeighbourList& list, const std::vector<std::uint32_t>& kept, std::vector<RowSpan>& spans,
+               std::vector<std::uint32_t>& inverse) {
+  inverse.assign(list.particles(), kGoneParticle);
+  for (std::size_t i = 0; i < kept.size(); ++i) inverse.at(kept[i]) = static_cast<std::uint32_t>(i);
+  std::vector<std::size_t> offsets(kept.size() + 1, 0);
+  spans.resize(kept.size());
+  std::size_t w = 0;  // rows only move forward: compacted in place
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const std::uint32_t self = static_cast<std::uint32_t>(i);
+    RowSpan span{self, self};
+    for (std::size_t k = list.begin(kept[i]); k < list.end(kept[i]); ++k) {
+      const std::uint32_t j = inverse[list.indices[k]];
+      if (j == kGoneParticle) continue;
+      list.indices[w++] = j;
+      span.first = std::min(span.first, j);
+      span.second = std::max(span.second, j);
+    }
+    offsets[i + 1] = w;
+    spans[i] = span;
+  }
+  list.indices.resize(w);
+  list.offsets = std::move(offsets);
+}
+
+template <int D>
+void NeighbourSearch<D>::keep(const std::vector<std::uint32_t>& kept) {
+  keep_rows(list_, kept, spans_, inverse_);
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    for (int k = 0; k < D; ++k) points_[D * i + k] = points_[D * kept[i] + k];
+    cell_of_[i] = cell_of_[kept[i]];
+    if (!radius2_.empty()) radius2_[i] = radius2_[kept[i]];
+  }
+  points_.resize(D * kept.size());
+  cell_of_.resize(kept.size());
+  if (!radius2_.empty()) radius2_.resize(kept.size());
+  std::size_t w = 0;  // each cell's particles, renamed, ascending still
+  for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
+    const std::size_t begin = cell_start_[c], end = cell_start_[c + 1];
+    cell_start_[c] = static_cast<std::uint32_t>(w);
+    for (std::size_t k = begin; k < end; ++k)
+      if (inverse_[cell_particles_[k]] != kGoneParticle) cell_particles_[w++] = inverse_[cell_particles_[k]];
+  }
+  if (!cell_start_.empty()) cell_start_.back() = static_cast<std::uint32_t>(w);
+  cell_particles_.resize(w);
+  n_ = kept.size();
+}
+
 template <int D>
 void NeighbourSearch<D>::query(const Vec<D>& p, Real radius, std::vector<std::uint32_t>& out) const {
   out.clear();

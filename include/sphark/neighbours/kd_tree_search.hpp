@@ -39,6 +39,8 @@ class KdTreeNeighbourSearch {
              const Real* radii = nullptr);
   // New index i is old index order[i]; lists, stored points and the tree follow, rows keep order.
   void renumber(const std::vector<std::uint32_t>& order);
+  // As NeighbourSearch::keep; the tree is dropped (query() needs a build again).
+  void keep(const std::vector<std::uint32_t>& kept);
   const std::vector<RowSpan>& row_spans() const { return spans_; }  // after renumber(): NeighbourSearch's
   // The built particles in tree order (leaf by leaf).
   const std::vector<std::uint32_t>& cell_order() const { return index_; }

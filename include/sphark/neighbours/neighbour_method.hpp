@@ -70,6 +70,12 @@ class AdaptiveNeighbourSearch {
     else
       tree_.renumber(order);
   }
+  void keep(const std::vector<std::uint32_t>& kept) {
+    if (method_ == NeighbourMethod::cell_grid)
+      grid_.keep(kept);
+    else
+      tree_.keep(kept);
+  }
   const std::vector<RowSpan>& row_spans() const { return grid() ? grid_.row_spans() : tree_.row_spans(); }
   const std::vector<std::uint32_t>& cell_order() const { return grid() ? grid_.cell_order() : tree_.cell_order(); }
   void query(const Vec<D>& p, Real radius, std::vector<std::uint32_t>& out) const {

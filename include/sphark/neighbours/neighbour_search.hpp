@@ -59,6 +59,13 @@ inline RowSpan renumber_row(const NeighbourList& list, std::size_t o, const std:
   return span;
 }
 
+// Keeps the rows of the particles `kept` (ascending old indices; new index i = kept[i]), each
+// without the particles not kept and renumbered, in its order; spans: each new row's RowSpan;
+// inverse: old index -> new, kGoneParticle for the others.
+inline constexpr std::uint32_t kGoneParticle = ~std::uint32_t{0};
+void keep_rows(NeighbourList& list, const std::vector<std::uint32_t>& kept, std::vector<RowSpan>& spans,
+               std::vector<std::uint32_t>& inverse);
+
 template <int D>
 class NeighbourSearch {
  public:
@@ -82,6 +89,10 @@ class NeighbourSearch {
   // Renumbers the built particles: new index i is old index order[i] (a permutation of 0..n-1).
   // The lists, the stored positions and the cells follow; every row keeps its order.
   void renumber(const std::vector<std::uint32_t>& order);
+  // Removes the built particles not in `kept` (ascending; new index i is old index kept[i]): the
+  // lists, the stored positions and the cells follow (particles leaving, e.g. accreted by a sink:
+  // the others' lists stay valid, as a removal brings no pair closer).
+  void keep(const std::vector<std::uint32_t>& kept);
   // After renumber(): per particle i, the least and largest index in {i} and its row (the span of
   // memory a loop over the row reads, in the new order); empty before.
   const std::vector<RowSpan>& row_spans() const { return spans_; }

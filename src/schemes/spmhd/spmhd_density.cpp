@@ -26,9 +26,9 @@
 namespace sphark {
 
 template <int D, class K>
-int SpmhdScheme<D, K>::build_neighbours(const Real* x) {
+int SpmhdScheme<D, K>::build_neighbours(const Real* x, bool grow_only) {
   for (std::size_t i = 0; i < n_; ++i) {
-    list_h_[i] = std::max(h_[i], list_h_needed_[i]);
+    list_h_[i] = std::max(grow_only ? std::max(h_[i], list_h_[i]) : h_[i], list_h_needed_[i]);
     list_h_needed_[i] = 0;
     radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
   }
@@ -176,7 +176,8 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
         rebuild = short_lists > 0;
       }
       if (rebuild) {
-        if (const int rc = build_neighbours(x)) return rc;
+        // a retry's lists only grow: the needs of every attempt so far are kept
+        if (const int rc = build_neighbours(x, attempt > 0)) return rc;
         for (std::size_t i = 0; i < n_; ++i) list_h_served_[i] = radii_[i] / K::support;
       }
     }
@@ -352,7 +353,7 @@ void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
   template void SpmhdScheme<D, K>::first_smoothing_lengths(const Real*, bool);                  \
-  template int SpmhdScheme<D, K>::build_neighbours(const Real*);                               \
+  template int SpmhdScheme<D, K>::build_neighbours(const Real*, bool);                               \
   template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real, const Real*); \
   template void SpmhdScheme<D, K>::predict_smoothing_lengths(Real);                  \

@@ -204,7 +204,8 @@ class SpmhdScheme final : public OdeSystem {
   void predict_smoothing_lengths(Real t);  // the solve's initial guesses at t (spmhd_density.cpp)
   void slots_to_solve();  // solve_slots_: the slots prepare() must solve, of those it serves
   void set_h_time(Real t);  // every slot's h solved at t
-  int build_neighbours(const Real* x);  // lists for list_h_, then slots in cell order
+  // lists for list_h_ (grow_only: no list shorter than the last build's), then slots in cell order
+  int build_neighbours(const Real* x, bool grow_only = false);
   struct DensityStats {
     std::size_t not_converged = 0, outside_list = 0, iterations = 0;
     Real h_max = 0;
@@ -219,6 +220,7 @@ class SpmhdScheme final : public OdeSystem {
   void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
+  void remove_particles(const std::vector<std::size_t>& kept, std::size_t sinks);  // change_particles' removals
   // zeta_a of the grad-h term from a density solve's candidates (spmhd_density.cpp)
   static Real gravitational_zeta_of(const Real* r, const Real* m, std::size_t count, int lanes, Real m_a, Real h_a,
                                     Real rho_a);
