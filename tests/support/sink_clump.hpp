@@ -22,7 +22,8 @@ struct Clump {
 // particle 0 turned into a sink of three particle masses; eq. (9) left out within
 // tensile_exclusion of the sink and weighted by plasma beta between beta_full and beta_none
 // (SpmhdOptions::tensile_beta_full, tensile_beta_none; 0: at every beta).
-inline Clump clump(Real tensile_exclusion = 0, Real beta_full = 2, Real beta_none = 0) {
+// fixed_ch > 0: that cleaning speed (else the largest fast speed, global).
+inline Clump clump(Real tensile_exclusion = 0, Real beta_full = 2, Real beta_none = 0, Real fixed_ch = 0) {
   SphereSpec spec;
   spec.particles = 300;
   spec.radius = 0.1;
@@ -37,6 +38,7 @@ inline Clump clump(Real tensile_exclusion = 0, Real beta_full = 2, Real beta_non
   o.tensile_sink_exclusion = tensile_exclusion;
   o.tensile_beta_full = beta_full;
   o.tensile_beta_none = beta_none;
+  o.fixed_ch = fixed_ch;
   Clump c{std::make_unique<SpmhdScheme<3>>(std::vector<Real>(n, place.particle_mass), o), {}};
   SpmhdScheme<3>& s = *c.scheme;
   std::vector<Real> all(s.size(), 0), scratch(s.size());

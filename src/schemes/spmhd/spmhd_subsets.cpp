@@ -146,6 +146,10 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
       if (image(x + D * a, x + D * b).squaredNorm() < reach * reach) dt_b = cap;
     }
   }
+  // The particles whose density this event solved (the active ones' neighbourhoods): their own
+  // steps are current, and bound them too (a neighbour compressed, or heated, past its level).
+  for (std::size_t b = 0; b < n_; ++b)
+    if (solved_at_x_[b]) dt[perm_[b]] = std::min(dt[perm_[b]], own_of_slot_[b]);
   Real shortest = inf;  // over the active gas: a sink takes the shortest gas step
   std::size_t next = 0;
   for (std::size_t i : active)

@@ -111,7 +111,8 @@ class SpmhdScheme final : public OdeSystem {
   // (stable_steps), capped at 4 x that of any neighbour within the kernel support (Saitoh &
   // Makino 2009); a sink's is the shortest gas step. active_stable_dt: that of each active gas
   // particle; of every other gas particle 4 x the least own step of its active neighbours (the
-  // limiter's wake-up, as Phantom's); of a sink the shortest active gas step. Its work: the rows
+  // limiter's wake-up, as Phantom's), and its own step where its density was solved at (t, y) (the
+  // active ones' neighbourhoods); of a sink the shortest active gas step. Its work: the rows
   // of the active particles, and O(N) per-particle arithmetic.
   bool supports_subsets() const override { return opt_.evolve_particles && !halo_; }
   int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override;
