@@ -36,86 +36,18 @@
 // sampled at different times for its two particles (the usual individual-step scheme;
 // Pelupessy, Jänes & Portegies Zwart 2012, New Astron. 17, 711, build momentum-conserving
 // ones by splitting the pair interactions).
+#include "block_leapfrog_stepper.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstdio>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
-#include "sphark/integrate/level_partition.hpp"
-#include "steppers.hpp"
 #include "number_text.hpp"
 
 namespace sphark::detail {
-namespace {
-
-constexpr int kMaxLevel = 30;  // at most 2^30 substeps per top step
-constexpr std::int64_t kTicks = std::int64_t(1) << kMaxLevel;
-
-struct CycleFailure : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-struct CycleInterrupted {};  // StepperOptions::interrupt said so
-
-class BlockLeapfrogStepper final : public Stepper {
- public:
-  BlockLeapfrogStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0);
-  AdvanceStatus advance(Real t_out, Real* y, Real& t) override;
-  AdvanceStatus step(Real t_out, Real* y, Real& t) override;
-  StepperStats stats() const override;
-  std::string failure_reason() const override { return failure_; }
-  std::vector<int> roots_found() const override { return {}; }
-  // The derivative of the next kicks (FSAL), each particle's level, and whether the next cycle
-  // bins afresh: a restart at (t, y) with them takes this run's steps bit for bit.
-  std::vector<Real> resume_data() const override;
-  // Between cycles (all particles synchronised): the new state at t_; the next kicks use
-  // `carried` (the derivative moved with its entries) or the RHS at the new state; every particle
-  // is binned afresh at the next cycle.
-  void resize(const Resized& state) override;
-  std::vector<Real> carried_data() const override { return failed_ ? std::vector<Real>{} : dy_; }
-
- private:
-  void index_entries();
-  std::int64_t length(int level) const { return kTicks >> level; }
-  void cycle(Real top, Real t_end);  // sets t_ = t_end
-  void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
-  void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
-  std::vector<std::size_t> ending_at(std::int64_t tick) const;
-  void predict(std::int64_t tick);
-  std::vector<std::size_t> woken_at(std::int64_t tick) const;
-  void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
-  void evaluate(Real t, const std::vector<std::size_t>& active);
-  void count(const std::vector<std::size_t>& active);
-  void reindex();
-  void remove(Real t, std::vector<std::size_t>& active);
-  void take(Real t, StepperOptions::Removal& r, std::vector<std::size_t>& active);
-
-  OdeSystem& system_;
-  const StepperOptions opts_;
-  const Real top_;  // the top step: fixed_dt, else max_dt
-  std::size_t n_, np_, xp_, vp_;
-  std::vector<std::size_t> owner_;                 // entry -> particle
-  std::vector<std::vector<std::size_t>> entries_;  // particle -> its kicked entries (not x)
-  Real t_;
-  std::vector<Real> y_, dy_;  // synchronised state at t_ and its derivative (FSAL)
-  std::vector<Real> w_, eval_, out_, stable_, bound_;  // stable_: each particle's step since its last rebin
-  std::vector<int> level_;
-  std::vector<std::int64_t> start_;  // tick at which each particle's current step began
-  LevelPartition bins_;
-  Real tick_dt_ = 0;
-  bool fresh_ = true;  // the next cycle bins afresh (first cycle, or a new top step)
-  std::vector<LevelStats> level_stats_;
-  long events_ = 0, rhs_evals_ = 1, wakeups_ = 0;
-  bool removed_ = false;  // particles removed inside the current cycle (remove_active)
-  std::vector<std::size_t> wake_next_;  // ascending: to be woken at the next event (wake_next)
-  Real last_dt_ = 0;
-  bool failed_ = false;
-  std::string failure_;
-};
 
 BlockLeapfrogStepper::BlockLeapfrogStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0)
     : system_(system), opts_(opts), top_(opts.fixed_dt > 0 ? opts.fixed_dt : opts.max_dt), n_(system.size()),
@@ -279,69 +211,6 @@ void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& acti
     for (std::size_t k : entries_[i]) dy_[k] = out_[k];
 }
 
-// After an event's kicks: the system may remove active particles (StepperOptions::remove_active).
-void BlockLeapfrogStepper::remove(Real t, std::vector<std::size_t>& active) {
-  if (!opts_.remove_active) return;
-  std::optional<StepperOptions::Removal> r = opts_.remove_active(t, w_.data(), active);
-  if (!r) return;
-  removed_ = true;  // from here on a rollback needs undo_removals
-  take(t, *r, active);
-}
-
-// The new state of a removal: every per-entry and per-particle array follows the entries'
-// sources; `active` keeps its survivors. A particle whose entries have no source (a sink made of
-// removed ones) is new: it is evaluated at (t, y) and joins the active set on the deepest of its
-// levels (the next rebin bins it).
-void BlockLeapfrogStepper::take(Real t, StepperOptions::Removal& r, std::vector<std::size_t>& active) {
-  const std::size_t n_old = n_;
-  const std::vector<std::size_t> owner_old = owner_;
-  reindex();
-  if (r.y.size() != n_ || r.entry_source.size() != n_ || n_ > n_old)
-    throw std::logic_error("remove_active: " + std::to_string(r.y.size()) + " values and " +
-                           std::to_string(r.entry_source.size()) + " sources for a system of " + std::to_string(n_) +
-                           " entries (before: " + std::to_string(n_old) + ")");
-  constexpr std::size_t kNone = ~std::size_t{0}, kUnseen = kNone - 1;
-  std::vector<std::size_t> source(entries_.size(), kUnseen);  // new particle -> old particle (kNone: new)
-  for (std::size_t k = 0; k < n_; ++k) {
-    const std::size_t e = r.entry_source[k];
-    if (e != kNone && e >= n_old) throw std::logic_error("remove_active: entry source out of range");
-    const std::size_t from = e == kNone ? kNone : owner_old[e];
-    std::size_t& p = source[owner_[k]];
-    if (p != kUnseen && p != from) throw std::logic_error("remove_active: a particle made of two");
-    p = from;
-  }
-  const auto follow = [&](std::vector<Real>& a, bool new_from_y) {
-    std::vector<Real> b(n_);
-    for (std::size_t k = 0; k < n_; ++k) {
-      const std::size_t e = r.entry_source[k];
-      b[k] = e != kNone ? a[e] : new_from_y ? r.y[k] : 0;
-    }
-    a.swap(b);
-  };
-  follow(dy_, false);
-  follow(eval_, true);
-  w_ = std::move(r.y);
-  out_.assign(n_, 0);
-  std::vector<char> was_active(level_.size(), 0);
-  int deepest = 0;
-  for (std::size_t i : active) was_active[i] = 1, deepest = std::max(deepest, level_[i]);
-  std::vector<int> level(source.size(), deepest);
-  std::vector<std::int64_t> start(source.size(), 0);
-  std::vector<Real> stable(source.size(), 0);
-  std::vector<std::size_t> newcomers;
-  active.clear();
-  for (std::size_t p = 0; p < source.size(); ++p) {
-    if (source[p] == kNone) {
-      newcomers.push_back(p), active.push_back(p);
-      continue;
-    }
-    level[p] = level_[source[p]], start[p] = start_[source[p]], stable[p] = stable_[source[p]];
-    if (was_active[source[p]]) active.push_back(p);
-  }
-  level_.swap(level), start_.swap(start), stable_.swap(stable);
-  if (!newcomers.empty()) evaluate(t, newcomers);
-}
-
 // One top step: kicks at every particle's step start and end, drifts of all at every event.
 void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   tick_dt_ = std::ldexp(top, -kMaxLevel);
@@ -458,8 +327,6 @@ StepperStats BlockLeapfrogStepper::stats() const {
   s.current_time = t_;
   return s;
 }
-
-}  // namespace
 
 std::unique_ptr<Stepper> make_block_leapfrog_stepper(OdeSystem& system, const StepperOptions& opts, Real t0,
                                                      const Real* y0) {
