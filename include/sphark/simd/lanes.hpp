@@ -8,9 +8,11 @@
 // part, horizontal sum, the gather of a neighbour field, and LaneVec<S, D> (a D-vector of lanes,
 // the few operations the pair terms use on vectors, as Eigen's Vec<D> has them).
 //
-// No intrinsic is always_inline here, so that a template instantiated for Real4 outside an AVX2
-// function is ordinary (slow, correct) code, never an error nor an AVX2 instruction in a
-// baseline function: the AVX2 pair loops are flattened functions with target("avx2,fma").
+// No function here carries a target attribute, so that a template instantiated for Real4 outside
+// an AVX2 function is ordinary (slow, correct) code with the caller's calling convention, never an
+// error, an AVX2 instruction in a baseline function, nor a vector passed in a ymm register to a
+// baseline caller: the AVX2 pair loops are flattened functions with target("avx2,fma"), and a
+// build that does not flatten them (Debug, sanitizers) must get the same numbers.
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -68,8 +70,14 @@ inline Real2 sqrt(Real2 x) { return __builtin_ia32_sqrtpd(x); }
 #else
 inline Real2 sqrt(Real2 x) { return Real2{std::sqrt(x[0]), std::sqrt(x[1])}; }
 #endif
+// Four lanes as two halves of SSE2 (baseline) operations: no function here carries a target
+// attribute, so a Real4 instantiation that the compiler leaves out of line (a Debug build does
+// not flatten) passes its vectors by the same convention as its caller. Inlined into an AVX2
+// function, each half is a VEX instruction (vsqrtpd, vmovmskpd on the halves).
+inline Real2 low_half(Real4 x) { return __builtin_shufflevector(x, x, 0, 1); }
+inline Real2 high_half(Real4 x) { return __builtin_shufflevector(x, x, 2, 3); }
+inline Real4 sqrt(Real4 x) { return __builtin_shufflevector(sqrt(low_half(x)), sqrt(high_half(x)), 0, 1, 2, 3); }
 #if defined(__GNUC__) && defined(__x86_64__)
-__attribute__((target("avx2,fma"))) inline Real4 sqrt(Real4 x) { return __builtin_ia32_sqrtpd256(x); }
 #define SPHARK_SIMD_HAVE_AVX2 1
 #endif
 
@@ -83,11 +91,10 @@ inline unsigned mask_bits(Mask2 m) { return static_cast<unsigned>(__builtin_ia32
 #else
 inline unsigned mask_bits(Mask2 m) { return (m[0] != 0) | (m[1] != 0) << 1; }
 #endif
-#if defined(SPHARK_SIMD_HAVE_AVX2)
-__attribute__((target("avx2,fma"))) inline unsigned mask_bits(Mask4 m) {
-  return static_cast<unsigned>(__builtin_ia32_movmskpd256(reinterpret_cast<Real4>(m)));
+inline unsigned mask_bits(Mask4 m) {
+  const Real4 d = reinterpret_cast<Real4>(m);
+  return mask_bits(reinterpret_cast<Mask2>(low_half(d))) | mask_bits(reinterpret_cast<Mask2>(high_half(d))) << 2;
 }
-#endif
 
 // For each mask of W lanes: its set lanes in order, and how many.
 template <int W>
