@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace sphark {
 
@@ -158,12 +160,38 @@ void append_key_value(std::string& text, const std::string& key, const std::stri
   ((text += key) += '=') += value + '\n';
 }
 
+namespace {
+// "key=value" lines as key -> value, in order.
+std::vector<std::pair<std::string, std::string>> key_values(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t eq = line.find('=');
+    out.emplace_back(line.substr(0, eq), eq == std::string::npos ? std::string() : line.substr(eq + 1));
+  }
+  return out;
+}
+
+const std::string* value_of(const std::vector<std::pair<std::string, std::string>>& kv, const std::string& key) {
+  for (const auto& [k, v] : kv)
+    if (k == key) return &v;
+  return nullptr;
+}
+}  // namespace
+
+// Key by key, so that a key one side lacks (a checkpoint of an older version) is named as such.
 void check_restart_text(const OptionParser& p, const Checkpoint& c, const std::string& stored_name,
                         const std::string& now, const std::string& what) {
-  std::istringstream a(c.text(stored_name)), b(now);
-  std::string la, lb;
-  while (std::getline(a, la) && std::getline(b, lb))
-    if (la != lb) p.fail("--restart", what + " cannot change on restart: checkpoint has " + la + ", this run " + lb);
+  const auto stored = key_values(c.text(stored_name)), current = key_values(now);
+  auto shown = [](const std::string& key, const std::string* value) {
+    return value ? key + "=" + *value : "no " + key;
+  };
+  for (const auto* side : {&current, &stored})
+    for (const auto& [key, value] : *side) {
+      const std::string *a = value_of(stored, key), *b = value_of(current, key);
+      if (!a || !b || *a != *b)
+        p.fail("--restart", what + " cannot change on restart: checkpoint has " + shown(key, a) + ", this run " + shown(key, b));
+    }
 }
 
 void check_restart_t_end(const OptionParser& p, const Checkpoint& c, Real t_end) {

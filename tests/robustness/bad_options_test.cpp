@@ -110,6 +110,23 @@ TEST(BadOptions, WaterDropRestartMustMatchTheCheckpoint) {
   for (const auto& c : cases) expect_rejected(bin, c, dir, out);
 }
 
+// A scene key written only when it differs from its default (old checkpoints restart): a restart
+// that sets it is named by key, not by the line that happens to stand in its place.
+TEST(BadOptions, ARestartNamesTheSceneKeyTheCheckpointLacks) {
+  const auto bin = require_example("gravitating_sphere");
+  TempDir dir;
+  const auto ok = run(bin, {"--out", (dir.path() / "first").string(), "--particles", "400", "--t-end", "0.01",
+                            "--checkpoint-every", "0.01", "--output-every", "0", "--no-render", "--threads", "1"},
+                      dir.path());
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const std::string ckpt = (dir.path() / "first" / "uniform" / "checkpoint.bin").string();
+  const std::vector<BadInput> cases = {
+      {{"--restart", ckpt, "--opening", "mass", "--theta", "0.5"},
+       "--restart: scene parameters cannot change on restart: checkpoint has no opening, this run opening=mass"},
+  };
+  for (const auto& c : cases) expect_rejected(bin, c, dir, dir.path() / "second");
+}
+
 TEST(BadOptions, SecondDerivative1dRejectsWithOneLineAndNoFiles) {
   const auto bin = require_example("second_derivative_1d");
   TempDir dir;
