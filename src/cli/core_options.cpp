@@ -23,6 +23,9 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
   p.add_switch("--step-cap", &o.step_cap,
                "adaptive steps also bounded by the scheme's stable (CFL) step; off: by the error control alone");
   p.add("--max-dt", &o.max_dt, "upper bound on every step, 0 = none (the top step of leapfrog-blocks)", NonNegative{});
+  p.add("--velocity-tolerance", &o.velocity_tolerance,
+        "--stepper leapfrog: repeat the RHS while the kicked velocities differ from the predicted ones by more than "
+        "this x their rms (Phantom's tolv); 0 = off", NonNegative{});
   p.add("--mri-ratio", &o.mri_ratio, "--stepper mri-<table>: slow step / fast step", Positive{});
   p.add("--mri-fast-table", &o.mri_fast_table, "--stepper mri-<table>: the fast integrator's ERK table",
         OneOf{erk_table_names()});
@@ -56,6 +59,7 @@ StepperOptions stepper_options(const CoreOptions& o) {
   s.fixed_dt = o.dt;
   s.cap_by_stability = o.step_cap;
   s.max_dt = o.max_dt;
+  s.velocity_tolerance = o.velocity_tolerance;
   s.mri_ratio = o.mri_ratio;
   s.mri_fast_table = o.mri_fast_table;
   return s;

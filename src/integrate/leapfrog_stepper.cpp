@@ -45,6 +45,7 @@ namespace {
 
 constexpr int kMaxHalvings = 10;     // retries of one step after recoverable RHS failures
 constexpr int kMaxRootIterations = 100;
+constexpr int kMaxCorrectorIterations = 30;  // Phantom's maxits
 
 bool crossed(Real before, Real after) {
   return (before < 0 && after >= 0) || (before > 0 && after <= 0);
@@ -209,7 +210,51 @@ class LeapfrogStepper final : public Stepper {
     if (code != 0) return code;
     const Real* dy_new = dy_new_.data();
     for_each_entry(not_position_, [=](std::size_t k) { y_new[k] += 0.5 * dt * dy_new[k]; });  // kick
-    return 0;
+    return opts_.velocity_tolerance > 0 ? correct_until_converged(dt, t1) : 0;
+  }
+
+  // Phantom's corrector iterations (StepperOptions::velocity_tolerance): while the kicked
+  // velocities differ from the predicted ones the RHS saw, evaluate it again at the kicked
+  // state (positions unchanged) and redo the second kick. Returns the RHS code, or 1
+  // (recoverable: the step is retried at half the length) if kMaxCorrectorIterations do not do.
+  int correct_until_converged(Real dt, Real t1) {
+    const Real tol = opts_.velocity_tolerance;
+    const Real* y = y_.data();
+    const Real* dy = dy_.data();
+    Real* y_new = y_new_.data();
+    Real* pred = pred_.data();
+    for (int its = 0;; ++its) {
+      const Real e = predictor_difference();
+      if (e <= tol) return 0;
+      if (its == kMaxCorrectorIterations) {
+        callback_error_ = "velocities differ from their prediction by " + at_time(e) + " x rms after " +
+                          std::to_string(its) + " corrector iterations";
+        return 1;
+      }
+      for_each_entry(not_position_, [=](std::size_t k) { pred[k] = y_new[k]; });
+      const int code = call("rhs", t1, [&] { return system_.rhs(t1, pred, dy_new_.data()); });
+      if (code != 0) return code;
+      ++stats_.corrector_iterations;
+      const Real* dy_new = dy_new_.data();
+      for_each_entry(not_position_, [=](std::size_t k) { y_new[k] = (y[k] + 0.5 * dt * dy[k]) + 0.5 * dt * dy_new[k]; });
+    }
+  }
+
+  // max over velocity entries |v - v*| / rms v (kicked v in y_new_, predicted v* in pred_), over
+  // every rank; 0 without velocities.
+  Real predictor_difference() const {
+    const std::size_t v0 = system_.velocity_offset(), nv = system_.position_size();
+    double d[2] = {0, 0}, count = static_cast<double>(nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+      d[0] = std::max(d[0], std::abs(y_new_[v0 + i] - pred_[v0 + i]));
+      d[1] += y_new_[v0 + i] * y_new_[v0 + i];
+    }
+    if (opts_.communicator.distributed()) {
+      d[0] = opts_.communicator.allreduce(d[0], ReduceOp::Max);
+      d[1] = opts_.communicator.allreduce(d[1], ReduceOp::Sum);
+      count = opts_.communicator.allreduce(count, ReduceOp::Sum);
+    }
+    return d[1] > 0 ? d[0] / std::sqrt(d[1] / count) : 0;
   }
 
   // One "leapfrog-rev" step (header): only v is kicked, x and every other entry q drift.

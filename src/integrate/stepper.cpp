@@ -220,7 +220,9 @@ std::string format_stats(const StepperStats& st) {
   s << " err_test_fails=" << st.error_test_failures;
   if (st.rhs_evals_implicit > 0)
     s << " nonlin_fails=" << st.nonlinear_failures << " lin_solves=" << st.linear_solves;
-  s << " rhs_recoveries=" << st.rhs_recoveries << " particle_evals=" << st.particle_evals;
+  s << " rhs_recoveries=" << st.rhs_recoveries;
+  if (st.corrector_iterations > 0) s << " corrector_iterations=" << st.corrector_iterations;
+  s << " particle_evals=" << st.particle_evals;
   for (std::size_t l = 0; l < st.levels.size(); ++l)
     s << " level" << l << "=(steps=" << st.levels[l].steps << " rhs_evals=" << st.levels[l].rhs_evals
       << " particle_evals=" << st.levels[l].particle_evals << ")";

@@ -1,7 +1,9 @@
-// Kick-drift-kick leapfrog on the harmonic oscillator.
+// Kick-drift-kick leapfrog on the harmonic oscillator, and its corrector iterations (Phantom's
+// tolv) on a gyrating particle.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 
 #include "test_systems.hpp"
@@ -95,6 +97,86 @@ TEST(Leapfrog, StepFollowsMaxStableDt) {
   EXPECT_GT(st.steps, static_cast<long>(10 / 0.05));
   EXPECT_LT(st.steps, static_cast<long>(10 / 0.025) + 2);
   EXPECT_NEAR(y[0], std::cos(10.0), 1e-2);
+}
+
+// A particle gyrating in a field, a = omega (v_y, -v_x) (the Lorentz force): |v| stays |v0|.
+// The force depends on v only. The KDK step evaluates it at the predicted v* = v_n + dt g_n and
+// kicks the next step with that value (FSAL): with G = dt g, z = -i omega dt and v complex, the
+// step maps (v, G) by M = [[1 + z/2, (1 + z)/2], [z, z]], whose spectral radius exceeds 1
+// (1.0267 for omega dt = 0.5): |v| grows by it every step. Iterated until v agrees with its
+// prediction (StepperOptions::velocity_tolerance) the step is the trapezoidal rule: |v| is kept.
+class Gyration : public OdeSystem {
+ public:
+  explicit Gyration(Real omega) : omega_(omega) {}
+  std::size_t size() const override { return 4; }  // x, y, v_x, v_y
+  int rhs(Real, const Real* y, Real* ydot) override {
+    ydot[0] = y[2], ydot[1] = y[3];
+    ydot[2] = omega_ * y[3], ydot[3] = -omega_ * y[2];
+    return 0;
+  }
+  Real max_stable_dt(Real, const Real*, const Real*) noexcept override { return 1e9; }
+  std::size_t position_offset() const override { return 0; }
+  std::size_t velocity_offset() const override { return 2; }
+  std::size_t position_size() const override { return 2; }
+
+ private:
+  Real omega_;
+};
+
+struct GyrationRun {
+  Real speed_half = 0, speed_end = 0;  // |v| after steps/2 and after steps
+  long iterations = 0;
+};
+
+GyrationRun gyrate(Real theta, Real tolerance, int steps) {
+  Gyration sys(1.0);
+  const Real y0[4] = {0, 0, 1, 0};
+  StepperOptions o = options("leapfrog", 1e-6, theta);
+  o.velocity_tolerance = tolerance;
+  auto stepper = make_stepper(sys, o, 0, y0);
+  Real y[4], t = 0;
+  GyrationRun r;
+  EXPECT_EQ(stepper->advance(steps / 2 * theta, y, t), AdvanceStatus::Reached);
+  r.speed_half = std::hypot(y[2], y[3]);
+  EXPECT_EQ(stepper->advance(steps * theta, y, t), AdvanceStatus::Reached);
+  r.speed_end = std::hypot(y[2], y[3]);
+  r.iterations = stepper->stats().corrector_iterations;
+  return r;
+}
+
+TEST(Leapfrog, CorrectorIterationsKeepTheSpeedOfAGyration) {
+  const int steps = 400;
+  const Real theta = 0.5;
+  const std::complex<Real> z(0, -theta), trace = 1.0 + 1.5 * z, root = std::sqrt(trace * trace - 2.0 * z);
+  const Real radius = std::max(std::abs(0.5 * (trace + root)), std::abs(0.5 * (trace - root)));
+  const GyrationRun off = gyrate(theta, 0, steps), on = gyrate(theta, 1e-12, steps);
+  const Real growth = std::pow(off.speed_end / off.speed_half, 2.0 / steps);
+  std::printf("gyration, omega dt = %.1f: without iterations |v| %.6g after %d steps, growth per step %.12f "
+              "(spectral radius %.12f); with them |v| %.15f (%ld corrector iterations)\n",
+              theta, off.speed_end, steps, growth, radius, on.speed_end, on.iterations);
+  EXPECT_NEAR(growth, radius, 1e-9);
+  EXPECT_EQ(off.iterations, 0);
+  EXPECT_NEAR(on.speed_end, 1.0, 1e-9);  // each step converged to 1e-12 x |v|: 400 steps, 4e-10 at most
+  EXPECT_GT(on.iterations, steps);       // more than one iteration per step
+}
+
+// The iteration v <- v_half + dt/2 a(v) contracts by omega dt / 2 per iteration: at omega dt = 3
+// it diverges, at 1.5 it contracts by 0.75, too slowly to reach 1e-12 in 30 iterations, at 0.75
+// it converges. So the steps are retried at half the length until they converge (measured: 41
+// steps of 0.75 and 79 retries to t = 30), and |v| is kept.
+TEST(Leapfrog, AStepWhoseCorrectorDivergesIsRetriedShorter) {
+  Gyration sys(1.0);
+  const Real y0[4] = {0, 0, 1, 0};
+  StepperOptions o = options("leapfrog", 1e-6, 3.0);
+  o.velocity_tolerance = 1e-12;
+  auto stepper = make_stepper(sys, o, 0, y0);
+  Real y[4], t = 0;
+  ASSERT_EQ(stepper->advance(30, y, t), AdvanceStatus::Reached) << stepper->failure_reason();
+  const StepperStats st = stepper->stats();
+  std::printf("gyration at omega dt = 3: %ld steps, %ld retries, %ld corrector iterations, |v| %.15f\n", st.steps,
+              st.rhs_recoveries, st.corrector_iterations, std::hypot(y[2], y[3]));
+  EXPECT_GE(st.rhs_recoveries, st.steps);  // every step was retried at least once
+  EXPECT_NEAR(std::hypot(y[2], y[3]), 1.0, 1e-9);
 }
 
 }  // namespace

@@ -32,6 +32,14 @@ struct StepperOptions {
   bool cap_by_stability = true;
   // > 0: upper bound on every step of every method (except a fixed_dt run).
   Real max_dt = 0;
+  // "leapfrog" only, > 0: Phantom's corrector iterations (step_leapfrog.f90, tolv). The RHS of a
+  // KDK step sees predicted velocities v* (and B, psi, ... predicted alike); when the kicked
+  // velocities differ from them by more than this (max over velocity entries |v - v*| / rms v),
+  // the RHS is evaluated again at the kicked values and the kick redone, until they agree (the
+  // trapezoidal rule for velocity-dependent terms; a step that does not converge in 30 is
+  // retried at half the length). 0: off. (Phantom also bounds the next global step by the
+  // first difference, dterr; not done here: docs/time_integration.md.)
+  Real velocity_tolerance = 0;
   // > 0: first step of an adaptive ARKODE run (e.g. the last step of a run being restarted);
   // 0: ARKODE's own estimate. Ignored by fixed-step runs and the leapfrog.
   Real initial_dt = 0;
@@ -129,6 +137,7 @@ struct StepperStats {
   long error_test_failures = 0;  // steps rejected by the temporal error test
   long nonlinear_failures = 0;   // nonlinear solver convergence failures (IMEX only)
   long rhs_recoveries = 0;       // restarts with a smaller step after a recoverable RHS failure
+  long corrector_iterations = 0; // leapfrog: RHS evaluations repeated until the velocities agree
   long linear_solves = 0;        // custom diagonal linear solves (IMEX only)
   // Σ over RHS calls of the particles whose derivatives were computed (OdeSystem::num_particles()
   // per full RHS call, the active set per subset call): the unit of work of issue #17.

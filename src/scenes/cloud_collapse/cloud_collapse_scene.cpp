@@ -19,6 +19,9 @@ void CloudCollapseScene::set_defaults(CoreOptions& core) {
   core.t_end = 1.1;           // t_ff
   core.output_every = 0.05;   // t_ff
   core.stepper = "leapfrog";  // dt = min(Courant, force criterion): one RHS per step
+  // Phantom's corrector iterations: without them the 8,486-particle cleaned run fails at 1.0735
+  // t_ff (docs/cloud_collapse.md); with them the 2,502-particle run costs 8.5 % more evaluations.
+  core.velocity_tolerance = 0.1;
   core.rtol = 1e-4;
   core.atol = 1e-8;
 }
