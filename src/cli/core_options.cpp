@@ -73,6 +73,12 @@ StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, st
       std::fprintf(stderr, "%.*s: --stepper ark-imex: this run has no stiff part (no psi damping); using %s\n",
                  static_cast<int>(program.size()), program.data(), s.method.c_str());
   }
+  if (s.velocity_tolerance > 0 && s.method != "leapfrog") {
+    if (!program.empty())
+      std::fprintf(stderr, "%.*s: --velocity-tolerance %g applies to --stepper leapfrog only; %s does not iterate its corrector\n",
+                   static_cast<int>(program.size()), program.data(), s.velocity_tolerance, s.method.c_str());
+    s.velocity_tolerance = 0;
+  }
   return s;
 }
 

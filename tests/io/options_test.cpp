@@ -243,6 +243,30 @@ TEST(CoreOptions, StepperNamesAndMapping) {
   EXPECT_EQ(m.max_dt, 0.5);
 }
 
+namespace {
+class TwoEntries : public OdeSystem {
+ public:
+  std::size_t size() const override { return 2; }
+  int rhs(Real, const Real*, Real* ydot) override { return ydot[0] = ydot[1] = 0, 0; }
+};
+}  // namespace
+
+// --velocity-tolerance belongs to --stepper leapfrog; with another stepper it is dropped, said
+// in one line (a scene that defaults to it, the cloud collapse, runs block steps too).
+TEST(Options, AVelocityToleranceWithAnotherStepperIsDroppedWithALine) {
+  TwoEntries sys;
+  CoreOptions o;
+  o.velocity_tolerance = 0.1;
+  o.stepper = "leapfrog";
+  EXPECT_EQ(stepper_options(o, sys, "prog").velocity_tolerance, 0.1);
+  o.stepper = "leapfrog-blocks";
+  ::testing::internal::CaptureStderr();
+  const StepperOptions s = stepper_options(o, sys, "prog");
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(s.velocity_tolerance, 0);
+  EXPECT_EQ(err, "prog: --velocity-tolerance 0.1 applies to --stepper leapfrog only; leapfrog-blocks does not iterate its corrector\n");
+}
+
 TEST(Options, ProgrammerErrorsThrow) {
   OptionParser p("x", "y");
   Real bad = -1, good = 1;

@@ -197,7 +197,8 @@ StepperOptions stepper_options(const CoreOptions& o);
 // The same for one run of `system`: when --stepper ark-imex meets a run without a stiff part
 // (e.g. no psi damping), says so in one line on stderr (unless `program` is empty) and uses
 // ARKODE_DORMAND_PRINCE_7_4_5 for that run (a scene that runs several variants keeps going;
-// nothing is switched silently).
+// nothing is switched silently). A velocity_tolerance > 0 with any other stepper than
+// "leapfrog" is dropped with one line on stderr the same way.
 StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, std::string_view program);
 
 // An interval option (e.g. --output-every; 0 = off) that must lie in [t_end / kMaxOutputs, t_end]:
