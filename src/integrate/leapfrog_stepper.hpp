@@ -171,7 +171,8 @@ class LeapfrogStepper final : public Stepper {
   // Phantom's corrector iterations (StepperOptions::velocity_tolerance): while the kicked
   // velocities differ from the predicted ones the RHS saw, evaluate it again at the kicked
   // state (positions unchanged) and redo the second kick. Returns the RHS code, or 1
-  // (recoverable: the step is retried at half the length) if kMaxCorrectorIterations do not do.
+  // (recoverable: the step is retried at half the length) if kMaxCorrectorIterations do not do,
+  // or at once on a stop request (StepperOptions::interrupt: each iteration asks).
   int correct_until_converged(Real dt, Real t1);
 
   // max over velocity entries |v - v*| / rms v (kicked v in y_new_, predicted v* in pred_), over
@@ -181,11 +182,13 @@ class LeapfrogStepper final : public Stepper {
   // One "leapfrog-rev" step (header): only v is kicked, x and every other entry q drift.
   int step_reversible(Real dt);
 
-  // Recoverable RHS failure: halve dt and retry from the saved state (up to kMaxHalvings).
+  // Recoverable RHS failure: halve dt and retry from the saved state (up to kMaxHalvings), unless
+  // a stop request came (then false, interrupted_, the state as before the step).
   bool attempt_with_retries(Real& dt) {
     for (int halvings = 0;; ++halvings) {
       const int code = step(dt);
       if (code == 0) return true;
+      if (code > 0 && interrupt_now()) return false;
       if (code < 0 || halvings == kMaxHalvings || 0.5 * dt < opts_.min_dt) {
         fail(code < 0 ? "fatal RHS failure"
              : halvings == kMaxHalvings

@@ -45,6 +45,7 @@ int LeapfrogStepper::correct_until_converged(Real dt, Real t1) {
                         std::to_string(its) + " corrector iterations";
       return 1;
     }
+    if (interrupt_now()) return 1;  // (attempt_with_retries stops)
     for_each_entry(not_position_, [=](std::size_t k) { pred[k] = y_new[k]; });
     const int code = call("rhs", t1, [&] { return system_.rhs(t1, pred, dy_new_.data()); });
     if (code != 0) return code;

@@ -6,6 +6,7 @@
 #include <complex>
 #include <cstdio>
 
+#include "sphark/integrate/forwarding_system.hpp"
 #include "test_systems.hpp"
 
 namespace sphark::test {
@@ -123,6 +124,19 @@ class Gyration : public OdeSystem {
   Real omega_;
 };
 
+// Counts the RHS evaluations of the system it forwards to.
+class CountingSystem : public ForwardingSystem {
+ public:
+  CountingSystem(OdeSystem& inner, long& count) : ForwardingSystem(inner), count_(count) {}
+  int rhs(Real t, const Real* y, Real* ydot) override {
+    ++count_;
+    return ForwardingSystem::rhs(t, y, ydot);
+  }
+
+ private:
+  long& count_;
+};
+
 struct GyrationRun {
   Real speed_half = 0, speed_end = 0;  // |v| after steps/2 and after steps
   long iterations = 0;
@@ -177,6 +191,26 @@ TEST(Leapfrog, AStepWhoseCorrectorDivergesIsRetriedShorter) {
               st.rhs_recoveries, st.corrector_iterations, std::hypot(y[2], y[3]));
   EXPECT_GE(st.rhs_recoveries, st.steps);  // every step was retried at least once
   EXPECT_NEAR(std::hypot(y[2], y[3]), 1.0, 1e-9);
+}
+
+// A stop request is heard inside a step's corrector iterations (each one asks), not only between
+// steps: a step whose corrector cannot converge (tolerance 1e-300 at omega dt = 3: it diverges,
+// and each retry at half the length takes 30 more evaluations) stops after the evaluation that
+// saw the request, the state as before the step.
+TEST(Leapfrog, AStopRequestEndsTheCorrectorIterationsAtOnce) {
+  Gyration sys(1.0);
+  const Real y0[4] = {0, 0, 1, 0};
+  StepperOptions o = options("leapfrog", 1e-6, 3.0);
+  o.velocity_tolerance = 1e-300;
+  long evaluations = 0;
+  CountingSystem counted(sys, evaluations);
+  o.interrupt = [&] { return evaluations >= 6; };  // the initial RHS, the step's, four iterations
+  auto stepper = make_stepper(counted, o, 0, y0);
+  Real y[4], t = -1;
+  EXPECT_EQ(stepper->advance(30, y, t), AdvanceStatus::Interrupted);
+  EXPECT_EQ(evaluations, 6);
+  EXPECT_EQ(t, 0.0);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(y[k], y0[k]) << k;
 }
 
 }  // namespace
