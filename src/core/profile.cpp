@@ -47,6 +47,9 @@ void RunProfile::print(std::ostream& os, double wall) const {
   const double accounted = (advance > rhs ? advance : rhs) + seconds(Phase::Output);
   line("set-up and rest", wall > accounted ? wall - accounted : 0.0, 0);
   line("total", wall, 0);
+  if (tallied(Tally::ListBuilds) > 0 || tallied(Tally::DensitySolves) > 0)
+    os << "  work: " << tallied(Tally::ListBuilds) << " neighbour list builds, " << tallied(Tally::DensitySolves)
+       << " density/h solves (particles)\n";
 }
 
 }  // namespace sphark

@@ -74,6 +74,7 @@ void DualTreeWalk::record(Step s, NodePair p, Found& out) const {
 }
 
 void DualTreeWalk::walk_depth_first(NodePair p, Found& out) const {
+  if (!wanted(p)) return;  // (nor any pair below it)
   const Step s = classify(p.a, p.b);
   const WalkNode &A = nodes_[p.a], &B = nodes_[p.b];
   switch (s) {
@@ -107,7 +108,7 @@ void DualTreeWalk::expand_breadth_first(Found& out) {
     const Step s = classify(p.a, p.b);
     const WalkNode &A = nodes_[p.a], &B = nodes_[p.b];
     if (s == Step::Far || s == Step::Near) {
-      record(s, p, out);
+      if (wanted(p)) record(s, p, out);
     } else if (s == Step::Self) {
       queue_.push_back({A.left, A.left});
       queue_.push_back({A.right, A.right});
@@ -130,8 +131,11 @@ std::size_t DualTreeWalk::capacity() const {
   return c;
 }
 
-void DualTreeWalk::walk(const GravityTree& tree, Real theta, GravityOpening opening) {
+void DualTreeWalk::walk(const GravityTree& tree, Real theta, GravityOpening opening,
+                        const std::vector<std::uint8_t>* targets) {
   if (!(theta > 0 && theta < 1)) throw std::invalid_argument("DualTreeWalk: theta must be in (0, 1)");
+  if (targets && targets->size() != tree.nodes().size()) throw std::invalid_argument("DualTreeWalk: one target flag per node");
+  targets_ = targets;
   const std::size_t capacity_before = capacity();
   const std::vector<TreeNode>& tn = tree.nodes();
   nodes_.resize(tn.size());
@@ -156,6 +160,7 @@ void DualTreeWalk::walk(const GravityTree& tree, Real theta, GravityOpening open
   for (std::ptrdiff_t j = 0; j < jobs; ++j) walk_depth_first(queue_[j], found_[1 + j]);
   far_pairs_ = assemble(far_, &Found::far, ~0u, false);
   near_pairs_ = assemble(near_, &Found::near, ~kNewtonian, true);
+  targets_ = nullptr;
   if (capacity() > capacity_before) ++allocations_;
 }
 

@@ -35,7 +35,8 @@ TreeGravity<K>::TreeGravity(const GravityOptions& options) : opt_(options) {
 template <class K>
 Real TreeGravity<K>::compute(const GravitySources& src, Real* acceleration, Real* potential) {
   tree_.build(src, K::support, opt_.leaf_size);
-  walk_.walk(tree_, opt_.theta, opt_.opening);
+  mark_targets(src.wanted);
+  walk_.walk(tree_, opt_.theta, opt_.opening, targets_.empty() ? nullptr : &targets_);
   bool grew = gravity_detail::resize_reporting_growth(local_, tree_.nodes().size());
   grew |= gravity_detail::resize_reporting_growth(runs_, walk_.near().partner.size());
   grew |= gravity_detail::resize_reporting_growth(newtonian_runs_, tree_.nodes().size());
@@ -61,6 +62,22 @@ Real TreeGravity<K>::compute(const GravitySources& src, Real* acceleration, Real
   return src.wanted ? std::numeric_limits<Real>::quiet_NaN() : potential_energy(src.m, potential, src.n);
 }
 
+// targets_: per node, whether it holds a wanted particle (children after their parent: bottom up).
+template <class K>
+void TreeGravity<K>::mark_targets(const std::uint8_t* wanted) {
+  targets_.clear();
+  if (!wanted) return;
+  const std::vector<TreeNode>& nd = tree_.nodes();
+  targets_.assign(nd.size(), 0);
+  for (std::size_t i = nd.size(); i-- > 0;) {
+    if (!nd[i].leaf()) {
+      targets_[i] = targets_[nd[i].left] | targets_[nd[i].right];
+      continue;
+    }
+    for (std::uint32_t a = nd[i].begin; a < nd[i].end && !targets_[i]; ++a) targets_[i] = wanted[tree_.order()[a]] != 0;
+  }
+}
+
 // Step 1: every node's expansion from its far partners, in list order.
 template <class K>
 void TreeGravity<K>::far_field_expansions() {
@@ -70,6 +87,7 @@ void TreeGravity<K>::far_field_expansions() {
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t i = 0; i < nn; ++i) {
     const auto node = static_cast<std::uint32_t>(i);
+    if (!target(node)) continue;
     local_[i] = gravity_detail::far_field_of_partners(nd[i], nd, far.partner.data() + far.begin(node),
                                                       far.end(node) - far.begin(node));
   }
@@ -80,7 +98,7 @@ template <class K>
 void TreeGravity<K>::pass_expansions_down() {
   const std::vector<TreeNode>& nd = tree_.nodes();
   for (std::size_t i = 0; i < nd.size(); ++i) {
-    if (nd[i].leaf()) continue;
+    if (nd[i].leaf() || !target(i)) continue;
     for (std::uint32_t c : {nd[i].left, nd[i].right}) {
       const Real d[3] = {nd[c].com[0] - nd[i].com[0], nd[c].com[1] - nd[i].com[1], nd[c].com[2] - nd[i].com[2]};
       add_shifted(local_[c], local_[i], d);
@@ -117,6 +135,10 @@ void TreeGravity<K>::merge_near_runs() {
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : masked)
   for (std::ptrdiff_t j = 0; j < nl; ++j) {
     const std::uint32_t leaf = leaves[j], b0 = near.begin(leaf), b1 = near.end(leaf);
+    if (!target(leaf)) {
+      newtonian_runs_[leaf] = all_runs_[leaf] = 0;
+      continue;
+    }
     ParticleRun* first = runs_.data() + b0;
     ParticleRun* newtonian = first;
     for (std::uint32_t k = b0; k < b1; ++k)  // the list is sorted by partner: so are the runs

@@ -172,9 +172,10 @@ void KdTreeNeighbourSearch<D>::list_rows(const std::uint32_t* key) {
                               [this](std::int32_t l, std::size_t v) { return node_[l].begin < v; });
     };
     const auto lf = leaf_at(n * t / nt), ll = leaf_at(n * (t + 1) / nt);
+    // this thread's rows: out[0, used) (out only grows: no clearing and refilling per build)
     std::vector<std::uint32_t>& out = thread_rows_[t];
     std::vector<std::int32_t>&cand = thread_stack_[2 * t], &stack = thread_stack_[2 * t + 1];
-    out.clear();
+    std::size_t used = 0;
     for (auto leaf = lf; leaf != ll; ++leaf) {
       const Node& a = node_[*leaf];
       candidate_leaves(a, cand, stack);
@@ -182,23 +183,27 @@ void KdTreeNeighbourSearch<D>::list_rows(const std::uint32_t* key) {
         const std::uint32_t i = index_[s];
         const Real* p = pts_.data() + D * s;
         const Real r2 = r2_[s];
-        row_start_[s] = out.size();
+        row_start_[s] = used;
         for (std::int32_t b : cand) {
           const Node& nb = node_[b];
-          std::size_t pos = out.size();
-          out.resize(pos + (nb.end - nb.begin));
+          // a leaf none of whose particles can be within max(r_i, r_j) of this one (the leaf
+          // traversal opened it for the largest radius of i's leaf)
+          if (box_distance2(nb, p) >= std::max(r2, nb.reach2)) continue;
+          if (out.size() < used + (nb.end - nb.begin)) out.resize(2 * (used + (nb.end - nb.begin)));
+          std::size_t pos = used;
           for (std::uint32_t u = nb.begin; u < nb.end; ++u) {  // branch-free append, as the cell grid
             const Real d2 = image(p, pts_.data() + D * u).squaredNorm();
             out[pos] = index_[u];
             pos += (d2 < std::max(r2, r2_[u])) & (u != s);
           }
-          out.resize(pos);
+          used = pos;
         }
+        const auto row = out.begin() + static_cast<std::ptrdiff_t>(row_start_[s]), end = out.begin() + static_cast<std::ptrdiff_t>(used);
         if (key)
-          std::sort(out.begin() + row_start_[s], out.end(), [key](std::uint32_t x, std::uint32_t y) { return key[x] < key[y]; });
+          std::sort(row, end, [key](std::uint32_t x, std::uint32_t y) { return key[x] < key[y]; });
         else
-          std::sort(out.begin() + row_start_[s], out.end());
-        list_.offsets[i + 1] = out.size() - row_start_[s];
+          std::sort(row, end);
+        list_.offsets[i + 1] = used - row_start_[s];
       }
     }
 #pragma omp barrier

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "sphark/diagnostics/column_density.hpp"
@@ -289,12 +290,14 @@ namespace sphark {
 namespace {
 
 // The multirate interface on the collapse itself (periodic box, cell-ordered slots: slot and
-// particle order differ, unlike the clump of tests/spmhd/spmhd_subsets_test.cpp): a subset
-// evaluated right after a full evaluation at another state equals, on its particles, the full
-// RHS at its own state bit for bit — every mask it builds (the tree's targets, the zeta rows)
-// maps slots to particles rightly.
+// particle order differ, unlike the clump of tests/spmhd/spmhd_subsets_test.cpp): with the
+// neighbours' densities solved, a subset evaluated right after a full evaluation at another
+// state equals, on its particles, the full RHS at its own state bit for bit — every mask it
+// builds (the tree's targets, the zeta rows) maps slots to particles rightly.
 TEST(CloudSubsets, ASubsetEqualsTheFullRhsOnItsParticles) {
-  CloudCollapse cloud(small(1500));
+  CloudCollapseParams p = small(1500);
+  p.subset_density = SubsetDensity::Solved;
+  CloudCollapse cloud(p);
   SpmhdScheme<3>& s = cloud.scheme;
   const std::vector<Real>& y = cloud.y0;
   std::vector<Real> moved = y, scratch(y.size()), sub(y.size()), full(y.size());
@@ -313,6 +316,79 @@ TEST(CloudSubsets, ASubsetEqualsTheFullRhsOnItsParticles) {
       ++compared;
     }
   EXPECT_GT(compared, y.size() / 10);
+}
+
+// With the neighbours' densities predicted (the scene's default): an evaluation solves the
+// active gas particles' densities only, each bit for bit as the full solve at that state; every
+// other particle's density is that of its h, rho = m (eta / h)^3 (seed 000, eq. (5)).
+TEST(CloudSubsets, PredictedNeighbourDensitiesSolveTheActiveParticlesOnly) {
+  CloudCollapseParams p = small(1500);
+  ASSERT_EQ(p.subset_density, SubsetDensity::Predicted);
+  CloudCollapse cloud(p);
+  SpmhdScheme<3>& s = cloud.scheme;
+  const std::vector<Real>& y = cloud.y0;
+  std::vector<Real> moved = y, out(y.size());
+  const std::size_t x0 = s.layout().offset(Field::Position), n = s.particles();
+  for (std::size_t k = 0; k < 3 * n; ++k) moved[x0 + k] *= 0.999;
+  ASSERT_EQ(s.rhs(0, moved.data(), out.data()), 0) << s.last_error();
+  std::vector<std::size_t> active;
+  for (std::size_t i = 3; i < n; i += 7) active.push_back(i);
+  const long solves_before = s.density_solves();
+  ASSERT_EQ(s.rhs_subset(0.01, y.data(), active, out.data()), 0) << s.last_error();
+  EXPECT_EQ(s.density_solves() - solves_before, static_cast<long>(active.size()));
+  const std::vector<Real> h_sub = s.h(), rho_sub = s.rho();
+  ASSERT_EQ(s.rhs(0.01, y.data(), out.data()), 0) << s.last_error();
+  const std::vector<Real>& h_full = s.h();
+  const Real eta3 = std::pow(s.options().eta, 3);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i % 7 == 3) {
+      EXPECT_EQ(h_sub[i], h_full[i]) << i;
+    } else {
+      EXPECT_NE(h_sub[i], h_full[i]) << i;  // not solved: its prediction
+      EXPECT_NEAR(rho_sub[i], s.masses()[i] * eta3 / std::pow(h_sub[i], 3), 1e-15 * rho_sub[i]) << i;
+    }
+  }
+}
+
+// The lists' skin mostly one length for all (SpmhdOptions::skin_own_fraction 0.1, the scene's
+// default) instead of in proportion to each h: the same derivatives bit for bit, at the first
+// call and after the particles moved (lists reused or rebuilt), from shorter lists once they are
+// built for the solved h (the ambient's 3.1x the sphere's; measured 315,536 entries against
+// 422,972).
+TEST(CloudLists, ASharedSkinGivesTheSameDerivativesFromShorterLists) {
+  CloudCollapseParams proportional = small(1500), shared = small(1500);
+  ASSERT_EQ(shared.skin_own_fraction, 0.1);
+  proportional.skin_own_fraction = 1;
+  proportional.skin = shared.skin = 0.25;  // (0.5 in proportion to the first guess, one h for all, exceeds half the box)
+  CloudCollapse a(proportional), b(shared);
+  std::vector<Real> y = a.y0, da(y.size()), db(y.size());
+  ASSERT_EQ(y, b.y0);
+  const std::size_t x0 = a.scheme.layout().offset(Field::Position);
+  for (int call = 0; call < 3; ++call) {
+    if (call == 2) a.scheme.drop_neighbour_lists(), b.scheme.drop_neighbour_lists();  // built for the solved h
+    ASSERT_EQ(a.scheme.rhs(0, y.data(), da.data()), 0) << a.scheme.last_error();
+    ASSERT_EQ(b.scheme.rhs(0, y.data(), db.data()), 0) << b.scheme.last_error();
+    for (std::size_t k = 0; k < y.size(); ++k) ASSERT_EQ(da[k], db[k]) << "call " << call << ", entry " << k;
+    if (call == 2) {
+      const double entries_a = static_cast<double>(a.scheme.neighbours().list().indices.size());
+      const double entries_b = static_cast<double>(b.scheme.neighbours().list().indices.size());
+      std::printf("list entries: %.0f (skin in proportion to h), %.0f (shared skin)\n", entries_a, entries_b);
+      EXPECT_LT(entries_b, 0.8 * entries_a);
+    }
+    for (std::size_t k = 0; k < 3 * a.scheme.particles(); ++k) y[x0 + k] *= 0.998;  // a contraction
+  }
+}
+
+// At the smallest sphere count the scene accepts (1,000: the ambient's h approaches a quarter of
+// the box) the first solve grows the ambient's lists from the one first guess by 1.5x steps; with
+// the skin of 0.5 such a list's radius would pass half the periodic box. The skin is cut there
+// (the list serves less, rebuilt sooner) instead of failing the evaluation.
+TEST(CloudLists, AListRadiusIsCutAtHalfTheBoxNotFailed) {
+  CloudCollapse cloud(small(1000));
+  std::vector<Real> ydot(cloud.y0.size());
+  ASSERT_EQ(cloud.scheme.rhs(0, cloud.y0.data(), ydot.data()), 0) << cloud.scheme.last_error();
+  const Real h_max = *std::max_element(cloud.scheme.h().begin(), cloud.scheme.h().end());
+  EXPECT_LT(2 * h_max, 0.5 * (cloud.box.hi[0] - cloud.box.lo[0]));  // the support itself fits
 }
 
 }  // namespace

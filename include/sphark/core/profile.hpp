@@ -28,16 +28,27 @@ enum class Phase : std::size_t {
 
 const char* phase_name(Phase p);
 
+// Work counted beside the time (printed under the table when some is non-zero).
+enum class Tally : std::size_t {
+  ListBuilds,     // neighbour list builds (every particle's row)
+  DensitySolves,  // particles whose density / h was solved
+  Count
+};
+
 class RunProfile {
  public:
   using Clock = std::chrono::steady_clock;
   bool enabled() const { return enabled_; }
   void enable(bool on = true) { enabled_ = on; }
-  void reset() { seconds_.fill(0); calls_.fill(0); }
+  void reset() { seconds_.fill(0); calls_.fill(0); tallies_.fill(0); }
   void add(Phase p, double seconds) {
     seconds_[static_cast<std::size_t>(p)] += seconds;
     ++calls_[static_cast<std::size_t>(p)];
   }
+  void tally(Tally k, long n) {
+    if (enabled_) tallies_[static_cast<std::size_t>(k)] += n;
+  }
+  long tallied(Tally k) const { return tallies_[static_cast<std::size_t>(k)]; }
   double seconds(Phase p) const { return seconds_[static_cast<std::size_t>(p)]; }
   long calls(Phase p) const { return calls_[static_cast<std::size_t>(p)]; }
   // The table "phase  seconds  % of wall  calls" for a run that took `wall_seconds`.
@@ -47,6 +58,7 @@ class RunProfile {
   bool enabled_ = false;
   std::array<double, static_cast<std::size_t>(Phase::Count)> seconds_{};
   std::array<long, static_cast<std::size_t>(Phase::Count)> calls_{};
+  std::array<long, static_cast<std::size_t>(Tally::Count)> tallies_{};
 };
 
 // The process-wide profile.

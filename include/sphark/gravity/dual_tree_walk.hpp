@@ -12,6 +12,10 @@
 // iff A is in B's. Each unordered pair is found once; both nodes list it. The near lists are
 // sorted by partner index (so that near partner leaves form runs of consecutive particles).
 //
+// Targets (the field wanted at some particles only: GravitySources::wanted): a pair of nodes
+// neither of which holds a wanted particle is not recorded, nor walked below; the pairs kept are
+// found, and listed, in the same order as in the full walk.
+//
 // Parallel: the walk is expanded breadth first into a fixed number of independent node pairs
 // (kJobs, not the thread count), each walked depth first into its own buffers; the lists are
 // assembled in job order. The lists do not depend on the thread count.
@@ -40,8 +44,10 @@ class DualTreeWalk {
   static constexpr std::uint32_t kNewtonian = 0x80000000u;
   static constexpr int kJobs = 256;
 
-  // Throws std::invalid_argument unless 0 < theta < 1.
-  void walk(const GravityTree& tree, Real theta, GravityOpening opening = GravityOpening::Fixed);
+  // Throws std::invalid_argument unless 0 < theta < 1. targets: per node, whether it holds a
+  // wanted particle (nullptr: every node).
+  void walk(const GravityTree& tree, Real theta, GravityOpening opening = GravityOpening::Fixed,
+            const std::vector<std::uint8_t>* targets = nullptr);
 
   const PartnerLists& far() const { return far_; }    // indexed by node
   const PartnerLists& near() const { return near_; }  // indexed by node (non-empty for leaves)
@@ -73,7 +79,10 @@ class DualTreeWalk {
                        bool sorted);
   std::size_t capacity() const;
 
+  bool wanted(NodePair p) const { return !targets_ || (*targets_)[p.a] || (*targets_)[p.b]; }
+
   std::vector<WalkNode> nodes_;
+  const std::vector<std::uint8_t>* targets_ = nullptr;  // during walk()
   std::vector<NodePair> queue_;
   std::vector<Found> found_;  // [0]: found while expanding; [1 + j]: job j
   PartnerLists far_, near_;

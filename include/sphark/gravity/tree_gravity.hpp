@@ -8,6 +8,8 @@
 //      plus the self potential G m_a phi(0, h_a). The near leaves of A are merged into runs of
 //      consecutive particles (sorted by position in tree order), Newtonian-only runs apart,
 //      so that the inner loops are long and vectorise.
+// With GravitySources::wanted, the nodes holding no wanted particle (targets_) are sources only:
+// no walk between two of them, no expansion of theirs, no near runs.
 // Every step is OpenMP-parallel over independent nodes or leaves and sums in a fixed order:
 // results do not depend on the thread count. The far and near lists are symmetric, and each
 // far interaction's total force on A is minus that on B to round-off (docs/gravity.md), so
@@ -45,6 +47,8 @@ class TreeGravity final : public SelfGravity {
   const DualTreeWalk& walk() const { return walk_; }
 
  private:
+  void mark_targets(const std::uint8_t* wanted);
+  bool target(std::size_t node) const { return targets_.empty() || targets_[node]; }
   void far_field_expansions();
   void pass_expansions_down();
   void merge_near_runs();
@@ -54,6 +58,7 @@ class TreeGravity final : public SelfGravity {
   GravityOptions opt_;
   GravityTree tree_;
   DualTreeWalk walk_;
+  std::vector<std::uint8_t> targets_;  // per node: holds a wanted particle (empty: all wanted)
   std::vector<LocalExpansion> local_;
   // Leaf i's runs: runs_[near.begin(i) ..): newtonian_runs_[i] Newtonian-only runs, then up to
   // all_runs_[i] runs that may hold softened pairs (masked_length_: the most particles in the

@@ -65,6 +65,9 @@ SpmhdOptions cloud_collapse_options(const CloudCollapseParams& p, const CloudNum
   o.cleaning_courant = p.cleaning_courant;
   o.force_courant = p.force_courant;
   enable_self_gravity(o, p.gravity, p.theta, p.opening);
+  o.subset_density = p.subset_density;
+  o.skin = p.skin;
+  o.skin_own_fraction = p.skin_own_fraction;
   o.G = 1;
   enable_kernel_softened_sinks(o, c.accretion_radius);
   return o;

@@ -63,6 +63,14 @@ void CloudCollapseScene::add_options(OptionParser& p) {
         Range{0.05, 0.95});
   p.add("--opening", &opening_, "tree opening: one angle, or Dehnen's mass-dependent angle (docs/gravity.md)",
         OneOf{{"fixed", "mass"}});
+  p.add("--subset-density", &subset_density_,
+        "block steps: the inactive neighbours' densities, solved at each evaluation or predicted from their last solve",
+        OneOf{{"solved", "predicted"}});
+  p.add("--skin", &params_.skin,
+        "Verlet skin of the neighbour lists in units of the smallest 2h (cost only: results do not depend on it)",
+        Range{0.01, 2.0});
+  p.add("--skin-own-fraction", &params_.skin_own_fraction,
+        "the part of the skin in proportion to each h, the rest one length for all (cost only)", Range{0.0, 1.0});
   p.add("--diagnostics-every", &diagnostics_every_, "time between diagnostics rows [t_ff]", Positive{});
 }
 
@@ -71,6 +79,7 @@ void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core,
   params_.particles = static_cast<std::size_t>(particles_);
   params_.gravity = parse_gravity_solver(gravity_);
   params_.opening = parse_gravity_opening(opening_);
+  params_.subset_density = parse_subset_density(subset_density_);
   if (!p.was_given("--theta")) params_.theta = default_theta(params_.opening);
   params_.local_ch = local_ch_;
   params_.tensile_correction = !no_tensile_correction_;
@@ -122,6 +131,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   if (params_.tensile_beta_none > 0) append_key_value(text, "tensile_beta", params_.tensile_beta_none);
   if (params_.opening != GravityOpening::Fixed) append_key_value(text, "opening", opening_);  // old checkpoints restart
   append_key_value(text, "step_floor", params_.step_floor_tff);
+  append_key_value(text, "subset_density", subset_density_);
   return text;
 }
 

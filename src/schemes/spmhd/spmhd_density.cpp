@@ -25,23 +25,42 @@
 
 namespace sphark {
 
+// Half the shortest periodic side (+inf without one): the longest list radius the minimum image allows.
+template <int D, class K>
+Real SpmhdScheme<D, K>::half_period() const {
+  Real half = std::numeric_limits<Real>::infinity();
+  if (const auto& box = ns_.box())
+    for (int k = 0; k < D; ++k)
+      if (box->periodic[k]) half = std::min(half, 0.5 * (box->hi[k] - box->lo[k]));
+  return half;
+}
+
 template <int D, class K>
 int SpmhdScheme<D, K>::build_neighbours(const Real* x, bool grow_only) {
+  Real h_min = std::numeric_limits<Real>::infinity();
   for (std::size_t i = 0; i < n_; ++i) {
     list_h_[i] = std::max(grow_only ? std::max(h_[i], list_h_[i]) : h_[i], list_h_needed_[i]);
     list_h_needed_[i] = 0;
-    radii_[i] = K::support * list_h_[i] * (1 + opt_.skin);
+    h_min = std::min(h_min, list_h_[i]);
+  }
+  // The minimum image needs 2 r <= the period: a skin is cut there (its list then serves less and
+  // is rebuilt sooner), an h whose support reaches beyond has grown too far.
+  const Real r_cap = half_period();
+  const Real own = opt_.skin_own_fraction * opt_.skin, shared = n_ > 0 ? (opt_.skin - own) * h_min : 0;  // SpmhdOptions::skin_own_fraction
+  Real support_max = 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    radii_[i] = std::min(K::support * (list_h_[i] * (1 + own) + shared), r_cap);
+    support_max = std::max(support_max, K::support * list_h_[i]);
   }
   if (halo_)  // the halo's radii: their owners' of this build (spmhd_distributed.cpp)
     for (std::size_t s = n_; s < n_all_; ++s) radii_[s] = halo_->radius[perm_[s] - n_];
   Real r_max = 0;
   for (std::size_t i = 0; i < n_all_; ++i) r_max = std::max(r_max, radii_[i]);
-  if (const auto& box = ns_.box())  // the minimum image needs 2 r < the period: h has grown too far
-    for (int k = 0; k < D; ++k)
-      if (box->periodic[k] && 2 * r_max > box->hi[k] - box->lo[k]) {
-        error_ = "smoothing length grew beyond half the periodic box (list radius " + std::to_string(r_max) + ")";
-        return 1;
-      }
+  if (support_max > r_cap || r_max > r_cap) {  // (a halo radius, from its owner's build)
+    error_ = "smoothing length grew beyond half the periodic box (support radius " +
+             std::to_string(std::max(support_max, r_max)) + ", half the period " + std::to_string(r_cap) + ")";
+    return 1;
+  }
   if (n_all_ == 0) {  // a rank left without particles (distributed): nothing to list
     built_ = true;
     max_list_ = 0;
@@ -51,6 +70,7 @@ int SpmhdScheme<D, K>::build_neighbours(const Real* x, bool grow_only) {
   ns_.build(x, n_all_, r_max, slot_keys(), radii_.data(), n_);
   built_ = true;
   ++builds_;
+  run_profile().tally(Tally::ListBuilds, 1);
   const NeighbourList& L = ns_.list();
   std::size_t longest = 0;
   for (std::size_t i = 0; i < n_; ++i) longest = std::max(longest, L.count(i));
@@ -124,9 +144,23 @@ void SpmhdScheme<D, K>::set_h_time(Real t) {
   t_h_slot_.assign(n_, t);
 }
 
+// SubsetDensity::Predicted: the slots not solved at x_ (the active rows' neighbours) take the
+// density of their predicted h, rho = m (eta / h)^D (seed 000, eq. (5)); Omega and zeta stay
+// their last solve's.
+template <int D, class K>
+void SpmhdScheme<D, K>::densities_of_predicted_h() {
+  const Real eta_d = std::pow(opt_.eta, D);
+  for (std::size_t a = 0; a < n_; ++a) {
+    if (solved_at_x_[a]) continue;
+    Real h_d = h_[a];
+    for (int k = 1; k < D; ++k) h_d *= h_[a];
+    rho_[a] = ms_[a] * eta_d / h_d;
+  }
+}
+
 // The slots not yet solved at x_ among those prepare() serves: every slot, or (rhs_subset) the
-// slots of serve_particles_ and of their list neighbours, which their rows read (every slot
-// while some has never been solved: its rho would enter P, the speeds and c_h).
+// slots of serve_particles_ and (SubsetDensity::Solved) of their list neighbours, which their
+// rows read (every slot while some has never been solved: its rho would enter P, the speeds and c_h).
 template <int D, class K>
 void SpmhdScheme<D, K>::slots_to_solve() {
   solve_slots_.clear();
@@ -140,11 +174,13 @@ void SpmhdScheme<D, K>::slots_to_solve() {
   for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
   std::vector<char>& wanted = solve_wanted_;
   wanted.assign(n_, 0);
+  const bool neighbours = opt_.subset_density == SubsetDensity::Solved;
   for (std::size_t i : serve_particles_) {
     if (i >= n_) continue;  // a sink
     const std::size_t a = slot_of_[i];
     wanted[a] = 1;
-    for (std::size_t k = L.begin(a); k < L.end(a); ++k) wanted[L.indices[k]] = 1;
+    if (neighbours)
+      for (std::size_t k = L.begin(a); k < L.end(a); ++k) wanted[L.indices[k]] = 1;
   }
   for (std::size_t a = 0; a < n_; ++a)
     if (wanted[a] && !solved_at_x_[a]) solve_slots_.push_back(static_cast<std::uint32_t>(a));
@@ -188,7 +224,9 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
     if (st.outside_list == 0) {
       if (all) set_h_time(t), every_slot_solved_ = true;
       density_solves_ += static_cast<long>(solve_slots_.size());
+      run_profile().tally(Tally::DensitySolves, static_cast<long>(solve_slots_.size()));
       for (std::uint32_t a : solve_slots_) t_h_slot_[a] = t, solved_at_x_[a] = 1;
+      if (!all && opt_.subset_density == SubsetDensity::Predicted) densities_of_predicted_h();
       if (st.not_converged == 0) return 0;
       error_ = "density: h iteration did not converge for " + std::to_string(st.not_converged) + " particle(s)";
       return 1;  // recoverable: a smaller step moves the particles less
@@ -354,12 +392,14 @@ void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
   template void SpmhdScheme<D, K>::first_smoothing_lengths(const Real*, bool);                  \
   template int SpmhdScheme<D, K>::build_neighbours(const Real*, bool);                               \
+  template Real SpmhdScheme<D, K>::half_period() const;                               \
   template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real, const Real*); \
   template void SpmhdScheme<D, K>::predict_smoothing_lengths(Real);                  \
   template void SpmhdScheme<D, K>::set_h_time(Real);                                 \
   template Real SpmhdScheme<D, K>::gravitational_zeta_of(const Real*, const Real*, std::size_t, int, Real, Real, Real); \
   template void SpmhdScheme<D, K>::slots_to_solve();                                 \
+  template void SpmhdScheme<D, K>::densities_of_predicted_h();                                 \
   template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*,               \
                                                                             const std::vector<std::uint32_t>*);
 #define SPHARK_SPMHD_DENSITY_2D_3D(K) SPHARK_SPMHD_DENSITY(2, K<2>) SPHARK_SPMHD_DENSITY(3, K<3>)

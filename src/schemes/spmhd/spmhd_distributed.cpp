@@ -192,8 +192,9 @@ int SpmhdScheme<D, K>::distributed_density_attempt(Real t, const Real* y, int at
   if (attempt > 0) std::copy(h_guess_.begin(), h_guess_.end(), h_.begin());
   new_radius_.resize(n_);
   plan_radius_.resize(n_);
-  for (std::size_t s = 0; s < n_; ++s) {  // as build_neighbours() computes them
-    const Real r = K::support * std::max(h_[s], list_h_needed_[s]) * (1 + opt_.skin);
+  const Real r_cap = half_period();
+  for (std::size_t s = 0; s < n_; ++s) {  // as build_neighbours() computes them (with skin_own_fraction 1: no shorter)
+    const Real r = std::min(K::support * std::max(h_[s], list_h_needed_[s]) * (1 + opt_.skin), r_cap);
     new_radius_[perm_[s]] = r;
     plan_radius_[perm_[s]] = built_ ? std::max(r, radii_[s]) : r;  // the lists in use, or a rebuild's
   }

@@ -45,6 +45,16 @@ std::string_view cleaning_name(Cleaning c) {
   return "unknown";
 }
 
+SubsetDensity parse_subset_density(std::string_view s) {
+  if (s == "solved") return SubsetDensity::Solved;
+  if (s == "predicted") return SubsetDensity::Predicted;
+  throw std::invalid_argument("unknown subset density: " + std::string(s));
+}
+
+std::string_view subset_density_name(SubsetDensity d) {
+  return d == SubsetDensity::Solved ? "solved" : "predicted";
+}
+
 template <int D, class K>
 SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::optional<PeriodicBox<D>> box,
                                std::vector<Real> fixed_positions)

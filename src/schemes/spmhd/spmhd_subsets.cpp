@@ -4,9 +4,11 @@
 //
 // Work: the pair loops (seed 000 §II: the force pass, and with self-gravity the grad-h term of
 // Price & Monaghan 2007) run over the active gas particles only, and so does the density / h
-// solve (4)-(5): over the active particles and their list neighbours, whose values the active
-// rows read (memoised per slot on the exact positions: repeated calls at one state solve each
-// slot once, and a full rhs() there solves only the slots not yet solved). Each solve starts from
+// solve (4)-(5): over the active particles and (SpmhdOptions::subset_density Solved) their list
+// neighbours, whose values the active rows read, or (Predicted) over the active particles only,
+// the neighbours' h predicted and rho from it (memoised per slot on the exact positions:
+// repeated calls at one state solve each slot once, and a full rhs() there solves only the
+// slots not yet solved). Each solve starts from
 // its slot's own last iterate and time. Computed for all particles and kept for the active
 // ones: the neighbour lists (Verlet, rebuilt for all when some list is too short), P and the
 // signal speeds (O(N) arithmetic; the global c_h is the largest fast speed, of the unsolved slots
@@ -146,8 +148,9 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
       if (image(x + D * a, x + D * b).squaredNorm() < reach * reach) dt_b = cap;
     }
   }
-  // The particles whose density this event solved (the active ones' neighbourhoods): their own
-  // steps are current, and bound them too (a neighbour compressed, or heated, past its level).
+  // The particles whose density this event solved (the active ones' neighbourhoods; with
+  // SubsetDensity::Predicted the active ones only): their own steps are current, and bound them
+  // too (a neighbour compressed, or heated, past its level).
   for (std::size_t b = 0; b < n_; ++b)
     if (solved_at_x_[b]) dt[perm_[b]] = std::min(dt[perm_[b]], own_of_slot_[b]);
   Real shortest = inf;  // over the active gas: a sink takes the shortest gas step

@@ -68,6 +68,7 @@ void WcsphSystem<D, Kernel>::update_neighbours(const Real* x, std::size_t count,
   search_.renumber(slot_particle_);
   built_ = true;
   ++builds_;
+  run_profile().tally(Tally::ListBuilds, 1);
 }
 
 namespace {

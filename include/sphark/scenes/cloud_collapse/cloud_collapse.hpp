@@ -62,6 +62,13 @@ struct CloudCollapseParams {
   GravitySolver gravity = GravitySolver::Tree;
   Real theta = kDefaultFixedTheta;    // tree opening angle (the root's with the mass-dependent opening)
   GravityOpening opening = GravityOpening::Fixed;
+  // the inactive neighbours' densities in a block-step evaluation (SpmhdOptions::subset_density;
+  // predicted: measured in docs/time_integration.md)
+  SubsetDensity subset_density = SubsetDensity::Predicted;
+  // the neighbour lists' skin, and its part in proportion to each h (SpmhdOptions::skin and
+  // skin_own_fraction; cost only: measured in docs/time_integration.md, session 26)
+  Real skin = 0.5;
+  Real skin_own_fraction = 0.1;
   Real step_floor_tff = 1e-7;         // a run whose steps stay below this (t_ff) fails, exit 3
 };
 

@@ -47,6 +47,7 @@ class CloudCollapseScene final : public Scene {
   std::string variant_ = "cleaning";
   std::string gravity_ = "tree";
   std::string opening_ = "fixed";
+  std::string subset_density_ = "predicted";
   long particles_ = 2000;
   bool local_ch_ = false, no_tensile_correction_ = false;
   Real diagnostics_every_ = 0.005;  // t_ff

@@ -23,6 +23,15 @@ enum class FieldRepresentation {
   EulerPotentials  // B = grad alpha x grad beta, alpha and beta advected (2D: beta = z, only alpha)
 };
 
+// The densities that a subset evaluation (rhs_subset: block steps, multirate) gives the active
+// particles' neighbours that are not active themselves.
+enum class SubsetDensity {
+  Solved,    // solved at the evaluation's positions, as the active particles' (seed 000, eqs. (4)-(5))
+  Predicted  // h advanced by dh/dt = h div v / D from its last solve and rho = m (eta / h)^D (eq. (5)),
+             // Omega and zeta kept from that solve: each evaluation solves only the active
+             // particles (Phantom's individual time steps keep the inactive particles' last density)
+};
+
 struct SpmhdOptions {
   Real gamma = 5.0 / 3.0;       // adiabatic index, P = (gamma - 1) rho u
   // A barotropic gas P = P(rho) (Price & Bate 2007; operators/barotropic_eos.hpp) instead: the
@@ -77,7 +86,14 @@ struct SpmhdOptions {
   // The density solve starts from the last h advanced by dh/dt = h div v / D (false: from the
   // last h). Only the initial guess: the roots agree to the solve's tolerance.
   bool predict_h = true;
+  SubsetDensity subset_density = SubsetDensity::Solved;
   Real skin = 0.25;             // Verlet skin: particle i lists neighbours within 2 h_i (1 + skin)
+  // The part of the skin that scales with each particle's own h; the rest is one length for all,
+  // (1 - f) skin h_min: particle i lists neighbours within 2 [h_i (1 + f skin) + (1 - f) skin h_min]
+  // (h_min the smallest h at the build). The smallest h's skin, which sets how far particles may
+  // move before a rebuild, is skin whatever f; with h spanning decades (a collapse) f < 1 makes
+  // the large-h particles' lists far shorter. 1: the skin of each h in proportion.
+  Real skin_own_fraction = 1;
 };
 
 // Self-gravity on (3D) with the solver and the tree's opening (docs/gravity.md).
@@ -90,5 +106,8 @@ void enable_kernel_softened_sinks(SpmhdOptions& o, Real accretion_radius);
 // "none", "constrained", "nonconservative"
 Cleaning parse_cleaning(std::string_view s);
 std::string_view cleaning_name(Cleaning c);
+// "solved", "predicted"
+SubsetDensity parse_subset_density(std::string_view s);
+std::string_view subset_density_name(SubsetDensity d);
 
 }  // namespace sphark

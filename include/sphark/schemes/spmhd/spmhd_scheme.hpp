@@ -126,7 +126,7 @@ class SpmhdScheme final : public OdeSystem {
   long neighbour_builds() const { return builds_; }
   // Makes the next RHS build its neighbour lists afresh (tests, benchmarks of the rebuild).
   void drop_neighbour_lists() { built_ = false; }
-  // The current neighbour lists (pairs within K::support * h (1 + skin) at the last build).
+  // The current neighbour lists (pairs within the list radii at the last build: radii_).
   // Its particle numbers are the scheme's internal slots (see below), not state indices.
   const AdaptiveNeighbourSearch<D>& neighbours() const { return ns_; }
   // Pairs a-b (ordered, a != b) with |x_a - x_b| < K::support * max(h_a, h_b) at the last RHS:
@@ -203,7 +203,9 @@ class SpmhdScheme final : public OdeSystem {
   // 0, or 1 (recoverable, error_ says why) when h cannot be solved or outgrows the box.
   int ensure_neighbours_and_density(Real t, const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
   void predict_smoothing_lengths(Real t);  // the solve's initial guesses at t (spmhd_density.cpp)
+  Real half_period() const;  // half the shortest periodic side of the box (+inf: none)
   void slots_to_solve();  // solve_slots_: the slots prepare() must solve, of those it serves
+  void densities_of_predicted_h();  // SubsetDensity::Predicted: rho of the unsolved slots from their h
   void set_h_time(Real t);  // every slot's h solved at t
   // lists for list_h_ (grow_only: no list shorter than the last build's), then slots in cell order
   int build_neighbours(const Real* x, bool grow_only = false);
@@ -313,8 +315,8 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<std::uint32_t> row_scratch_;  // per thread: a row's interacting neighbours
   std::vector<Real> h_guess_;       // h at the start of the density solve
   std::vector<Real> h_eval_;        // the last iterate of each h solve (h_ is one Newton step past it)
-  // Per-particle Verlet lists: particle i's list radius is support * list_h_[i] * (1 + skin)
-  // (a pair is listed if closer than the larger of its two radii); list_h_served_[i], the largest
+  // Per-particle Verlet lists: particle i's list radius is support * [list_h_[i] (1 + f skin) +
+  // (1 - f) skin min list_h_] (f = SpmhdOptions::skin_own_fraction; a pair is listed if closer than the larger of its two radii); list_h_served_[i], the largest
   // h the lists serve now; list_h_needed_[i] > 0: the h the next build must serve (an h grew past
   // list_h_served_[i]).
   std::vector<Real> list_h_, list_h_served_, list_h_needed_, radii_;
