@@ -67,7 +67,8 @@ void CloudCollapseScene::add_options(OptionParser& p) {
         "block steps: the inactive neighbours' densities, solved at each evaluation or predicted from their last solve",
         OneOf{{"solved", "predicted"}});
   p.add("--skin", &params_.skin,
-        "Verlet skin of the neighbour lists in units of the smallest 2h (cost only: results do not depend on it)",
+        "Verlet skin of the neighbour lists, a fraction of the smallest support radius 2h (cost only: results do "
+        "not depend on it, but with leapfrog-blocks and --subset-density solved)",
         Range{0.01, 2.0});
   p.add("--skin-own-fraction", &params_.skin_own_fraction,
         "the part of the skin in proportion to each h, the rest one length for all (cost only)", Range{0.0, 1.0});
