@@ -24,8 +24,8 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
                "adaptive steps also bounded by the scheme's stable (CFL) step; off: by the error control alone");
   p.add("--max-dt", &o.max_dt, "upper bound on every step, 0 = none (the top step of leapfrog-blocks)", NonNegative{});
   p.add("--velocity-tolerance", &o.velocity_tolerance,
-        "--stepper leapfrog: repeat the RHS while the kicked velocities differ from the predicted ones by more than "
-        "this x their rms (Phantom's tolv); 0 = off", NonNegative{});
+        "--stepper leapfrog or leapfrog-blocks: repeat the RHS (of the active particles) while the kicked velocities "
+        "differ from the predicted ones by more than this x their rms (Phantom's tolv); 0 = off", NonNegative{});
   p.add("--mri-ratio", &o.mri_ratio, "--stepper mri-<table>: slow step / fast step", Positive{});
   p.add("--mri-fast-table", &o.mri_fast_table, "--stepper mri-<table>: the fast integrator's ERK table",
         OneOf{erk_table_names()});
@@ -73,9 +73,9 @@ StepperOptions stepper_options(const CoreOptions& o, const OdeSystem& system, st
       std::fprintf(stderr, "%.*s: --stepper ark-imex: this run has no stiff part (no psi damping); using %s\n",
                  static_cast<int>(program.size()), program.data(), s.method.c_str());
   }
-  if (s.velocity_tolerance > 0 && s.method != "leapfrog") {
+  if (s.velocity_tolerance > 0 && s.method != "leapfrog" && s.method != "leapfrog-blocks") {
     if (!program.empty())
-      std::fprintf(stderr, "%.*s: --velocity-tolerance %g applies to --stepper leapfrog only; %s does not iterate its corrector\n",
+      std::fprintf(stderr, "%.*s: --velocity-tolerance %g applies to --stepper leapfrog and leapfrog-blocks only; %s does not iterate its corrector\n",
                    static_cast<int>(program.size()), program.data(), s.velocity_tolerance, s.method.c_str());
     s.velocity_tolerance = 0;
   }

@@ -211,12 +211,55 @@ void BlockLeapfrogStepper::evaluate(Real t, const std::vector<std::size_t>& acti
     for (std::size_t k : entries_[i]) dy_[k] = out_[k];
 }
 
+// The end of the active particles' steps: ending ones by half their step of the new derivative,
+// woken ones (cut back) by half the elapsed part e.
+void BlockLeapfrogStepper::end_kicks(const std::vector<std::size_t>& ending, const std::vector<std::size_t>& woken,
+                                     std::int64_t tick) {
+  kick(ending, 0.5, w_);
+  for (std::size_t i : woken) {
+    const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_;
+    for (std::size_t k : entries_[i]) w_[k] += 0.5 * e * dy_[k];
+  }
+}
+
+// max over the active particles' velocity entries of |v - v*| (kicked v in w_, the predicted v*
+// the evaluation saw in eval_) over the rms velocity entry of every particle (w_); 0 without
+// velocities.
+Real BlockLeapfrogStepper::predictor_difference(const std::vector<std::size_t>& active) const {
+  Real d = 0, sum = 0;
+  for (std::size_t i : active)
+    for (std::size_t k : entries_[i])
+      if (k >= vp_ && k < vp_ + np_) d = std::max(d, std::abs(w_[k] - eval_[k]));
+  for (std::size_t k = vp_; k < vp_ + np_; ++k) sum += w_[k] * w_[k];
+  return sum > 0 ? d / std::sqrt(sum / static_cast<Real>(np_)) : 0;
+}
+
+// Phantom's corrector iterations for the active particles (StepperOptions::velocity_tolerance,
+// as "leapfrog"; Phantom iterates its individual steps so too): while their kicked velocities
+// differ from the predicted ones the evaluation saw, evaluate them again with the kicked
+// entries (positions unchanged) and redo their end kicks; at most kMaxCorrectorIterations, then
+// the step goes on with the last.
+void BlockLeapfrogStepper::correct(Real t, const std::vector<std::size_t>& active, const std::vector<std::size_t>& ending,
+                                   const std::vector<std::size_t>& woken, std::int64_t tick) {
+  for (int its = 0; its < kMaxBlockCorrectorIterations; ++its) {
+    if (predictor_difference(active) <= opts_.velocity_tolerance) return;
+    for (std::size_t i : active)
+      for (std::size_t k : entries_[i]) eval_[k] = w_[k];
+    evaluate(t, active);
+    ++corrector_iterations_;
+    for (std::size_t i : active)
+      for (std::size_t k : entries_[i]) w_[k] = pre_[k];
+    end_kicks(ending, woken, tick);
+  }
+}
+
 // One top step: kicks at every particle's step start and end, drifts of all at every event.
 void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
   tick_dt_ = std::ldexp(top, -kMaxLevel);
   w_ = y_;
   eval_ = y_;
   out_.assign(n_, 0);
+  pre_.assign(n_, 0);
   std::vector<std::size_t> all(level_.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   rebin(t_, all, 0, fresh_);
@@ -251,11 +294,10 @@ void BlockLeapfrogStepper::cycle(Real top, Real t_end) {
       std::sort(active.begin(), active.end());
     }
     evaluate(t, active);
-    kick(ending, 0.5, w_);  // end of their steps
-    for (std::size_t i : woken) {  // end of their cut steps: e/2 of the new derivative
-      const Real e = static_cast<Real>(tick - start_[i]) * tick_dt_;
-      for (std::size_t k : entries_[i]) w_[k] += 0.5 * e * dy_[k];
-    }
+    for (std::size_t i : active)
+      for (std::size_t k : entries_[i]) pre_[k] = w_[k];
+    end_kicks(ending, woken, tick);
+    if (opts_.velocity_tolerance > 0) correct(t, active, ending, woken, tick);
     if (last) break;
     remove(t, active);
     wake_next_.clear();
@@ -319,6 +361,7 @@ StepperStats BlockLeapfrogStepper::stats() const {
   StepperStats s;
   s.steps = s.attempts = events_;
   s.rhs_evals = rhs_evals_;
+  s.corrector_iterations = corrector_iterations_;
   int deepest = 0;
   for (int l = 0; l <= kMaxLevel; ++l)
     if (level_stats_[l].rhs_evals > 0) deepest = l;

@@ -17,6 +17,7 @@
 namespace sphark::detail {
 
 constexpr int kMaxLevel = 30;  // at most 2^30 substeps per top step
+constexpr int kMaxBlockCorrectorIterations = 30;  // Phantom's maxits
 constexpr std::int64_t kTicks = std::int64_t(1) << kMaxLevel;
 
 struct CycleFailure : std::runtime_error {
@@ -52,6 +53,10 @@ class BlockLeapfrogStepper final : public Stepper {
   std::vector<std::size_t> woken_at(std::int64_t tick) const;
   void cut_back(const std::vector<std::size_t>& woken, std::int64_t tick);
   void evaluate(Real t, const std::vector<std::size_t>& active);
+  void end_kicks(const std::vector<std::size_t>& ending, const std::vector<std::size_t>& woken, std::int64_t tick);
+  void correct(Real t, const std::vector<std::size_t>& active, const std::vector<std::size_t>& ending,
+               const std::vector<std::size_t>& woken, std::int64_t tick);
+  Real predictor_difference(const std::vector<std::size_t>& active) const;
   void count(const std::vector<std::size_t>& active);
   void reindex();
   void remove(Real t, std::vector<std::size_t>& active);
@@ -65,14 +70,14 @@ class BlockLeapfrogStepper final : public Stepper {
   std::vector<std::vector<std::size_t>> entries_;  // particle -> its kicked entries (not x)
   Real t_;
   std::vector<Real> y_, dy_;  // synchronised state at t_ and its derivative (FSAL)
-  std::vector<Real> w_, eval_, out_, stable_, bound_;  // stable_: each particle's step since its last rebin
+  std::vector<Real> w_, eval_, out_, stable_, bound_, pre_;  // pre_: the active entries before their end kicks  // stable_: each particle's step since its last rebin
   std::vector<int> level_;
   std::vector<std::int64_t> start_;  // tick at which each particle's current step began
   LevelPartition bins_;
   Real tick_dt_ = 0;
   bool fresh_ = true;  // the next cycle bins afresh (first cycle, or a new top step)
   std::vector<LevelStats> level_stats_;
-  long events_ = 0, rhs_evals_ = 1, wakeups_ = 0;
+  long events_ = 0, rhs_evals_ = 1, wakeups_ = 0, corrector_iterations_ = 0;
   bool removed_ = false;  // particles removed inside the current cycle (remove_active)
   std::vector<std::size_t> wake_next_;  // ascending: to be woken at the next event (wake_next)
   Real last_dt_ = 0;

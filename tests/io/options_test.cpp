@@ -251,20 +251,24 @@ class TwoEntries : public OdeSystem {
 };
 }  // namespace
 
-// --velocity-tolerance belongs to --stepper leapfrog; with another stepper it is dropped, said
-// in one line (a scene that defaults to it, the cloud collapse, runs block steps too).
+// --velocity-tolerance belongs to the leapfrogs (leapfrog, leapfrog-blocks); with another
+// stepper it is dropped, said in one line (a scene that defaults to it, the cloud collapse, runs
+// ARKODE's steppers too).
 TEST(Options, AVelocityToleranceWithAnotherStepperIsDroppedWithALine) {
   TwoEntries sys;
   CoreOptions o;
   o.velocity_tolerance = 0.1;
-  o.stepper = "leapfrog";
-  EXPECT_EQ(stepper_options(o, sys, "prog").velocity_tolerance, 0.1);
-  o.stepper = "leapfrog-blocks";
+  for (const char* leapfrog : {"leapfrog", "leapfrog-blocks"}) {
+    o.stepper = leapfrog;
+    EXPECT_EQ(stepper_options(o, sys, "prog").velocity_tolerance, 0.1) << leapfrog;
+  }
+  o.stepper = "ARKODE_BOGACKI_SHAMPINE_4_2_3";
   ::testing::internal::CaptureStderr();
   const StepperOptions s = stepper_options(o, sys, "prog");
   const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(s.velocity_tolerance, 0);
-  EXPECT_EQ(err, "prog: --velocity-tolerance 0.1 applies to --stepper leapfrog only; leapfrog-blocks does not iterate its corrector\n");
+  EXPECT_EQ(err, "prog: --velocity-tolerance 0.1 applies to --stepper leapfrog and leapfrog-blocks only; "
+                 "ARKODE_BOGACKI_SHAMPINE_4_2_3 does not iterate its corrector\n");
 }
 
 TEST(Options, ProgrammerErrorsThrow) {

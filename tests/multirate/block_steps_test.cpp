@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <stdexcept>
 
 #include "oscillator_ensemble.hpp"
@@ -252,6 +253,81 @@ TEST(BlockSteps, BadOptionsAreOneLineInvalidArguments) {
     ADD_FAILURE() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("set fixed_dt or max_dt"), std::string::npos) << e.what();
+  }
+}
+
+// Particles gyrating in the plane, each at its own rate: a_i = omega_i (v_y, -v_x) keeps |v_i|.
+// Particle i owns x (entries 2i, 2i+1) and v (2N + 2i, 2N + 2i + 1); its stable step is
+// 0.5 / omega_i, so that omega_i dt = 0.5 on its own level.
+class GyrationEnsemble : public OdeSystem {
+ public:
+  explicit GyrationEnsemble(std::vector<Real> omega) : w_(std::move(omega)) {}
+  std::size_t n() const { return w_.size(); }
+  std::size_t size() const override { return 4 * n(); }
+  std::size_t num_particles() const override { return n(); }
+  std::size_t position_offset() const override { return 0; }
+  std::size_t velocity_offset() const override { return 2 * n(); }
+  std::size_t position_size() const override { return 2 * n(); }
+  bool supports_subsets() const override { return true; }
+  std::vector<std::size_t> entry_particles() const override {
+    std::vector<std::size_t> owner(size());
+    for (std::size_t k = 0; k < size(); ++k) owner[k] = (k % (2 * n())) / 2;
+    return owner;
+  }
+  int rhs(Real t, const Real* y, Real* ydot) override {
+    std::vector<std::size_t> all(n());
+    for (std::size_t i = 0; i < n(); ++i) all[i] = i;
+    return rhs_subset(t, y, all, ydot);
+  }
+  int rhs_subset(Real, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
+    std::fill(ydot, ydot + size(), 0.0);
+    const std::size_t v = 2 * n();
+    for (std::size_t i : active) {
+      ydot[2 * i] = y[v + 2 * i], ydot[2 * i + 1] = y[v + 2 * i + 1];
+      ydot[v + 2 * i] = w_[i] * y[v + 2 * i + 1], ydot[v + 2 * i + 1] = -w_[i] * y[v + 2 * i];
+    }
+    return 0;
+  }
+  int particle_stable_dt(Real, const Real*, const Real*, Real* dt) override {
+    for (std::size_t i = 0; i < n(); ++i) dt[i] = 0.5 / w_[i];
+    return 0;
+  }
+  Real max_stable_dt(Real, const Real*, const Real*) override { return 0.5 / *std::max_element(w_.begin(), w_.end()); }
+
+ private:
+  std::vector<Real> w_;
+};
+
+// The block stepper's corrector iterations (StepperOptions::velocity_tolerance, as "leapfrog"):
+// without them each particle's |v| grows by the KDK map's spectral radius per own step
+// (1.026719404499 at omega dt = 0.5, the leapfrog test's number) — on levels 0 and 2 here;
+// with them every |v| stays 1 to 1e-9.
+TEST(BlockSteps, CorrectorIterationsKeepEachParticlesSpeed) {
+  const Real radius = 1.026719404499;
+  for (const Real tolerance : {0.0, 1e-12}) {
+    GyrationEnsemble sys({1.0, 4.0});
+    std::vector<Real> y = {0, 0, 0, 0, 1, 0, 0, 1};
+    StepperOptions o;
+    o.method = "leapfrog-blocks";
+    o.fixed_dt = 0.5;
+    o.velocity_tolerance = tolerance;
+    auto stepper = make_stepper(sys, o, 0, y.data());
+    Real t = 0;
+    ASSERT_EQ(stepper->advance(25, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    const Real slow_half = std::hypot(y[4], y[5]), fast_half = std::hypot(y[6], y[7]);
+    ASSERT_EQ(stepper->advance(50, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
+    const StepperStats st = stepper->stats();
+    ASSERT_EQ(st.levels.size(), 3u);  // the fast particle on level 2 (0.125)
+    const Real slow = std::hypot(y[4], y[5]), fast = std::hypot(y[6], y[7]);
+    if (tolerance == 0) {  // the growth of the second half (the dominant mode alone)
+      EXPECT_NEAR(std::pow(slow / slow_half, 1.0 / 50), radius, 1e-9);   // 50 steps of 0.5
+      EXPECT_NEAR(std::pow(fast / fast_half, 1.0 / 200), radius, 1e-9);  // 200 steps of 0.125
+      EXPECT_EQ(st.corrector_iterations, 0);
+    } else {
+      EXPECT_NEAR(slow, 1.0, 1e-9);
+      EXPECT_NEAR(fast, 1.0, 1e-9);
+      EXPECT_GT(st.corrector_iterations, 400);  // more than one per evaluation of the fast one
+    }
   }
 }
 
