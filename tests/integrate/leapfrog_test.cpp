@@ -6,6 +6,7 @@
 #include <complex>
 #include <cstdio>
 
+#include "../support/gyration_ensemble.hpp"
 #include "sphark/integrate/forwarding_system.hpp"
 #include "test_systems.hpp"
 
@@ -106,24 +107,6 @@ TEST(Leapfrog, StepFollowsMaxStableDt) {
 // step maps (v, G) by M = [[1 + z/2, (1 + z)/2], [z, z]], whose spectral radius exceeds 1
 // (1.0267 for omega dt = 0.5): |v| grows by it every step. Iterated until v agrees with its
 // prediction (StepperOptions::velocity_tolerance) the step is the trapezoidal rule: |v| is kept.
-class Gyration : public OdeSystem {
- public:
-  explicit Gyration(Real omega) : omega_(omega) {}
-  std::size_t size() const override { return 4; }  // x, y, v_x, v_y
-  int rhs(Real, const Real* y, Real* ydot) override {
-    ydot[0] = y[2], ydot[1] = y[3];
-    ydot[2] = omega_ * y[3], ydot[3] = -omega_ * y[2];
-    return 0;
-  }
-  Real max_stable_dt(Real, const Real*, const Real*) noexcept override { return 1e9; }
-  std::size_t position_offset() const override { return 0; }
-  std::size_t velocity_offset() const override { return 2; }
-  std::size_t position_size() const override { return 2; }
-
- private:
-  Real omega_;
-};
-
 // Counts the RHS evaluations of the system it forwards to.
 class CountingSystem : public ForwardingSystem {
  public:
@@ -143,7 +126,7 @@ struct GyrationRun {
 };
 
 GyrationRun gyrate(Real theta, Real tolerance, int steps) {
-  Gyration sys(1.0);
+  GyrationEnsemble sys({1.0});
   const Real y0[4] = {0, 0, 1, 0};
   StepperOptions o = options("leapfrog", 1e-6, theta);
   o.velocity_tolerance = tolerance;
@@ -179,7 +162,7 @@ TEST(Leapfrog, CorrectorIterationsKeepTheSpeedOfAGyration) {
 // it converges. So the steps are retried at half the length until they converge (measured: 41
 // steps of 0.75 and 79 retries to t = 30), and |v| is kept.
 TEST(Leapfrog, AStepWhoseCorrectorDivergesIsRetriedShorter) {
-  Gyration sys(1.0);
+  GyrationEnsemble sys({1.0});
   const Real y0[4] = {0, 0, 1, 0};
   StepperOptions o = options("leapfrog", 1e-6, 3.0);
   o.velocity_tolerance = 1e-12;
@@ -198,7 +181,7 @@ TEST(Leapfrog, AStepWhoseCorrectorDivergesIsRetriedShorter) {
 // and each retry at half the length takes 30 more evaluations) stops after the evaluation that
 // saw the request, the state as before the step.
 TEST(Leapfrog, AStopRequestEndsTheCorrectorIterationsAtOnce) {
-  Gyration sys(1.0);
+  GyrationEnsemble sys({1.0});
   const Real y0[4] = {0, 0, 1, 0};
   StepperOptions o = options("leapfrog", 1e-6, 3.0);
   o.velocity_tolerance = 1e-300;

@@ -1,5 +1,6 @@
-// Neighbour lists (Verlet skin) and the density / smoothing-length solve of SpmhdScheme
-// (seed 000, eqs. (4)-(5); Omega as in sphark/operators/density_summation.hpp).
+// The density / smoothing-length solve of SpmhdScheme (seed 000, eqs. (4)-(5); Omega as in
+// sphark/operators/density_summation.hpp), and when the neighbour lists must be rebuilt (the
+// build itself: spmhd_lists.cpp).
 //
 // Speed: each particle's Newton iteration needs the sums at several trial h. The candidate
 // neighbours (r, m_b) are gathered ONCE per particle into a per-thread buffer, and every Newton
@@ -25,96 +26,6 @@
 
 namespace sphark {
 
-// Half the shortest periodic side (+inf without one): the longest list radius the minimum image allows.
-template <int D, class K>
-Real SpmhdScheme<D, K>::half_period() const {
-  Real half = std::numeric_limits<Real>::infinity();
-  if (const auto& box = ns_.box())
-    for (int k = 0; k < D; ++k)
-      if (box->periodic[k]) half = std::min(half, 0.5 * (box->hi[k] - box->lo[k]));
-  return half;
-}
-
-template <int D, class K>
-int SpmhdScheme<D, K>::build_neighbours(const Real* x, bool grow_only) {
-  Real h_min = std::numeric_limits<Real>::infinity();
-  for (std::size_t i = 0; i < n_; ++i) {
-    list_h_[i] = std::max(grow_only ? std::max(h_[i], list_h_[i]) : h_[i], list_h_needed_[i]);
-    list_h_needed_[i] = 0;
-    h_min = std::min(h_min, list_h_[i]);
-  }
-  // The minimum image needs 2 r <= the period: a skin is cut there (its list then serves less and
-  // is rebuilt sooner), an h whose support reaches beyond has grown too far.
-  const Real r_cap = half_period();
-  const Real own = opt_.skin_own_fraction * opt_.skin, shared = n_ > 0 ? (opt_.skin - own) * h_min : 0;  // SpmhdOptions::skin_own_fraction
-  Real support_max = 0;
-  for (std::size_t i = 0; i < n_; ++i) {
-    radii_[i] = std::min(K::support * (list_h_[i] * (1 + own) + shared), r_cap);
-    support_max = std::max(support_max, K::support * list_h_[i]);
-  }
-  if (halo_)  // the halo's radii: their owners' of this build (spmhd_distributed.cpp)
-    for (std::size_t s = n_; s < n_all_; ++s) radii_[s] = halo_->radius[perm_[s] - n_];
-  Real r_max = 0;
-  for (std::size_t i = 0; i < n_all_; ++i) r_max = std::max(r_max, radii_[i]);
-  if (support_max > r_cap || r_max > r_cap) {  // (a halo radius, from its owner's build)
-    error_ = "smoothing length grew beyond half the periodic box (support radius " +
-             std::to_string(std::max(support_max, r_max)) + ", half the period " + std::to_string(r_cap) + ")";
-    return 1;
-  }
-  if (n_all_ == 0) {  // a rank left without particles (distributed): nothing to list
-    built_ = true;
-    max_list_ = 0;
-    return 0;
-  }
-  // rows sorted by particle index (serially), by global id (distributed); the halo's rows empty
-  ns_.build(x, n_all_, r_max, slot_keys(), radii_.data(), n_);
-  built_ = true;
-  ++builds_;
-  run_profile().tally(Tally::ListBuilds, 1);
-  const NeighbourList& L = ns_.list();
-  std::size_t longest = 0;
-  for (std::size_t i = 0; i < n_; ++i) longest = std::max(longest, L.count(i));
-  max_list_ = longest;
-  sort_slots_by_cell();
-  return 0;
-}
-
-// Renumbers the slots in the cell order of the fresh lists; the per-slot data that outlives this
-// RHS (positions, h and its guesses, masses, the slot -> particle map) follows.
-template <int D, class K>
-void SpmhdScheme<D, K>::sort_slots_by_cell() {
-  order_ = ns_.cell_order();
-  if (halo_)  // this rank's particles first (their rows), then the halo, each in cell order
-    std::stable_partition(order_.begin(), order_.end(), [this](std::uint32_t s) { return s < n_; });
-  ns_.renumber(order_);
-  // arrays of every slot (n_all_ entries) or of this rank's particles (n_: order_ starts with them)
-  auto permute = [&](auto& v, int comps) {
-    using T = typename std::decay_t<decltype(v)>::value_type;
-    const std::size_t count = v.size() / comps;
-    if (v.size() % comps != 0 || (count != n_ && count != n_all_)) return;
-    permute_scratch_.resize(v.size());
-    for (std::size_t i = 0; i < count; ++i)
-      for (int k = 0; k < comps; ++k) permute_scratch_[comps * i + k] = static_cast<Real>(v[comps * order_[i] + k]);
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<T>(permute_scratch_[i]);
-  };
-  permute(x_, D);
-  permute(h_, 1);
-  permute(h_guess_, 1);
-  permute(h_eval_, 1);
-  permute(ms_, 1);
-  permute(list_h_, 1);
-  permute(radii_, 1);
-  permute(divv_, 1);
-  permute(t_h_slot_, 1);
-  permute(zeta_over_omega_, 1);
-  permute(solved_at_x_, 1);
-  // solved before the build: after a migration (distributed), or the slots a subset evaluation
-  // does not solve (serially): they follow their particles
-  permute(rho_, 1);
-  permute(omega_, 1);
-  permute(perm_, 1);  // slot indices < 2^31: exact through a double
-  if (halo_) permute(key_, 1);  // global ids < 2^32: exact too
-}
 
 // The initial guesses of the solve at t: the last iterates h_eval_ (solved at t_h_; h_ is one
 // Newton step past them) advanced by the continuity equation, dh/dt = -h/(D rho) drho/dt =
@@ -186,7 +97,8 @@ void SpmhdScheme<D, K>::slots_to_solve() {
     if (wanted[a] && !solved_at_x_[a]) solve_slots_.push_back(static_cast<std::uint32_t>(a));
 }
 
-// Verlet lists with per-particle radii R_i = support * list_h_i * (1 + skin). A pair closer than
+// Verlet lists with per-particle radii R_i (spmhd_lists.cpp: support * [list_h_i (1 + f skin) +
+// (1 - f) skin min list_h], cut at half a periodic box). A pair closer than
 // support * h_i now was closer than support * h_i + 2 disp at the build, so particle i's list
 // serves every h_i <= cap_i = (R_i - 2 disp) / support; a pair of the force loop (closer than
 // support * max(h_a, h_b)) is listed when both h are within their caps. Rebuild when some h
@@ -391,9 +303,6 @@ void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
   template void SpmhdScheme<D, K>::first_smoothing_lengths(const Real*, bool);                  \
-  template int SpmhdScheme<D, K>::build_neighbours(const Real*, bool);                               \
-  template Real SpmhdScheme<D, K>::half_period() const;                               \
-  template void SpmhdScheme<D, K>::sort_slots_by_cell();                                        \
   template int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real, const Real*); \
   template void SpmhdScheme<D, K>::predict_smoothing_lengths(Real);                  \
   template void SpmhdScheme<D, K>::set_h_time(Real);                                 \
