@@ -127,11 +127,19 @@ SinkCheck check_bound(const ClumpEnergies& e) { return e.total() < 0 ? SinkCheck
 
 SinkCreationTest test_sink_creation(const GasView& gas, const std::vector<Sink>& sinks, const SinkParams& params) {
   if (!(params.accretion_radius > 0)) throw std::invalid_argument("sink creation: r_acc must be positive");
+  if (!(params.forced_creation_factor == 0 || params.forced_creation_factor > 1))
+    throw std::invalid_argument("sink creation: forced_creation_factor must be 0 (never) or > 1");
   SinkCreationTest t;
   const std::optional<std::size_t> c = densest_gas_particle(gas, params.rho_sink);
   if (!c) return t;
   t.candidate = *c;
   t.result = check_outside_existing_sinks(gas, *c, sinks, params);
+  if (t.result == SinkCheck::ok && params.forced_creation_factor > 0 &&
+      gas.rho[*c] > params.forced_creation_factor * params.rho_sink) {
+    t.forced = true;
+    t.clump = clump_members(gas, *c, params.accretion_radius, params.box);
+    return t;
+  }
   if (t.result == SinkCheck::ok) t.result = check_converging_flow(gas, *c);
   if (t.result == SinkCheck::ok) t.result = check_smoothing_length(gas, *c, params.accretion_radius);
   if (t.result != SinkCheck::ok) return t;

@@ -187,6 +187,39 @@ TEST(SinkCreation, BlockedWhenUnbound) {
   expect_blocked_only_by(c, SinkCheck::unbound);
 }
 
+// Phantom's f_crit_override: above forced_creation_factor x rho_sink each later check that would
+// block the clump (one at a time) is passed, the clump as usual; at or below it, or within an
+// existing sink's creation radius, the checks hold.
+TEST(SinkCreation, ForcedAboveTheFactorPastEveryCheckButTheExistingSinks) {
+  const auto spoilers = std::vector<void (*)(Clump&)>{
+      [](Clump& c) { c.divv[0] = 0; },
+      [](Clump& c) { c.h[0] = 0.5; },
+      [](Clump& c) { c.phi[c.clump()[7]] = c.phi[0] - 1e-9; },
+      [](Clump& c) { c.set_alpha(0.55); },
+      [](Clump& c) { c.set_velocity(-3.0, 0); }};  // unbound
+  for (std::size_t k = 0; k < spoilers.size(); ++k) {
+    Clump c;
+    spoilers[k](c);
+    const SinkCheck blocked = test_sink_creation(c.view(), {}, c.params).result;
+    EXPECT_NE(blocked, SinkCheck::ok) << k;
+    c.params.forced_creation_factor = 2;  // rho 10 = 2 x rho_sink 5: not above
+    EXPECT_EQ(test_sink_creation(c.view(), {}, c.params).result, blocked) << k;
+    c.params.forced_creation_factor = 1.9;
+    const SinkCreationTest t = test_sink_creation(c.view(), {}, c.params);
+    EXPECT_EQ(t.result, SinkCheck::ok) << k;
+    EXPECT_TRUE(t.forced);
+    EXPECT_EQ(t.clump, c.clump()) << k;
+    EXPECT_EQ(create_sink_if_allowed(c.view(), {}, c.params).removed, c.clump()) << k;
+    Sink s;
+    s.x = Vec<3>(0, 1.9, 0), s.mass = 0.1, s.accretion_radius = 1;
+    EXPECT_EQ(test_sink_creation(c.view(), {s}, c.params).result, SinkCheck::inside_existing_sink) << k;
+  }
+  Clump c;
+  EXPECT_FALSE(test_sink_creation(c.view(), {}, c.params).forced);  // off by default
+  c.params.forced_creation_factor = 0.5;
+  EXPECT_THROW(test_sink_creation(c.view(), {}, c.params), std::invalid_argument);
+}
+
 TEST(SinkCreation, ConservesMassMomentumAndAngularMomentum) {
   Clump c;
   // far from the origin, moving and rotating: the orbital angular momentum about the origin is

@@ -5,36 +5,20 @@
 //    for sigma = 0, and only loses energy with damping.
 #include <gtest/gtest.h>
 
-#include <random>
 
 #include "sphark/kernels/kernels.hpp"
 #include "sphark/schemes/wcsph/wcsph_system.hpp"
+#include "../support/wcsph_lattice.hpp"
 
 using namespace sphark;
 
 namespace {
 using Sys = WcsphSystem<2, WendlandC2<2>>;
 
-// A disturbed square-lattice disc with random velocities, densities and psi.
+// A disturbed square lattice with random velocities, densities and psi (tests/support).
 std::vector<Real> disturbed_state(const Sys& sys, unsigned seed, Real dx) {
-  const StateLayout& L = sys.layout();
-  std::vector<Real> y(L.size());
-  auto x = vector_field<2>(y.data(), L, Field::Position);
-  auto v = vector_field<2>(y.data(), L, Field::Velocity);
-  auto rho = scalar_field(y.data(), L, Field::Density);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<Real> u(-1, 1);
-  const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(L.particles()))));
-  for (std::size_t a = 0; a < L.particles(); ++a) {
-    x.col(a) = Vec<2>((a % side) * dx, (a / side) * dx) + 0.2 * dx * Vec<2>(u(rng), u(rng));
-    v.col(a) = Vec<2>(u(rng), u(rng));
-    rho[a] = 1000 * (1 + 0.01 * u(rng));
-  }
-  if (L.has(Field::Psi)) {
-    auto psi = scalar_field(y.data(), L, Field::Psi);
-    for (Index a = 0; a < psi.size(); ++a) psi[a] = 1e4 * u(rng);
-  }
-  return y;
+  const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(sys.layout().particles()))));
+  return test::WcsphLattice{side, dx, 1000, 20, seed, 1e4}.disturbed_state(sys.layout());
 }
 
 WcsphParams<2> params(bool cleaning, Real sigma, bool subsystem) {

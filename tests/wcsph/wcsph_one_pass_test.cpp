@@ -17,6 +17,7 @@
 #include "sphark/operators/renormalised_gradient.hpp"
 #include "sphark/operators/tait_eos.hpp"
 #include "sphark/schemes/wcsph/wcsph_system.hpp"
+#include "../support/wcsph_lattice.hpp"
 
 using namespace sphark;
 
@@ -26,35 +27,10 @@ using Sys = WcsphSystem<2, K>;
 constexpr int kSide = 40;  // particles per side of the periodic square
 constexpr Real kDx = 0.05, kRho0 = 1000, kC0 = 20;
 
-WcsphParams<2> params() {
-  WcsphParams<2> p;
-  p.mass = kRho0 * kDx * kDx;
-  p.h = 1.3 * kDx;
-  p.rho0 = kRho0;
-  p.sound_speed = kC0;
-  p.alpha = 0;  // the reference below has no viscosity term
-  p.delta = 0.1;
-  p.diffusion_correction = true;
-  return p;
-}
-
-PeriodicBox<2> box() { return {Vec<2>::Zero(), Vec<2>::Constant(kSide * kDx), {true, true}}; }
-
-// A lattice disturbed by 0.2 dx, random velocities, a density field with a gradient.
-std::vector<Real> disturbed_state(const StateLayout& L) {
-  std::vector<Real> y(L.size());
-  auto x = vector_field<2>(y.data(), L, Field::Position);
-  auto v = vector_field<2>(y.data(), L, Field::Velocity);
-  auto rho = scalar_field(y.data(), L, Field::Density);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<Real> u(-1, 1);
-  for (std::size_t a = 0; a < L.particles(); ++a) {
-    x.col(a) = Vec<2>((a % kSide + 0.5) * kDx, (a / kSide + 0.5) * kDx) + 0.2 * kDx * Vec<2>(u(rng), u(rng));
-    v.col(a) = Vec<2>(u(rng), u(rng));
-    rho[a] = kRho0 * (1 + 0.01 * std::sin(2 * kPi * x(0, a) / (kSide * kDx)) + 0.002 * u(rng));
-  }
-  return y;
-}
+const test::WcsphLattice kLattice;  // 40 x 40, dx 0.05, rho0 1000, c0 20, seed 5
+WcsphParams<2> params() { return kLattice.params(); }
+PeriodicBox<2> box() { return kLattice.box(); }
+std::vector<Real> disturbed_state(const StateLayout& L) { return kLattice.disturbed_state(L); }
 
 std::vector<Real> rhs_on(int threads, const std::vector<Real>& y) {
   const int saved = omp_get_max_threads();

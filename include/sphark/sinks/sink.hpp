@@ -54,6 +54,10 @@ struct SinkParams {
   Real accretion_radius = 0;    // r_acc of new sinks
   Real creation_radius = 0;     // no new sink within this distance of an existing one (Phantom r_crit; 0: no limit)
   Real unconditional_fraction = 0.8;  // gas inside f r_acc is accreted without checks (Phantom f_acc)
+  // A candidate denser than forced_creation_factor x rho_sink becomes a sink without the checks
+  // after the first (outside_existing_sinks); 0: never (Phantom f_crit_override, "unconditional
+  // sink formation if rho > f_crit_override*rho_crit"; Phantom requires it > 10 when set).
+  Real forced_creation_factor = 0;
   Real G = 1;
   PairPotential pair_potential;        // see above
   std::optional<PeriodicBox<3>> box;   // minimum-image separations when set

@@ -10,6 +10,9 @@
 //   thermal                 alpha = |E_th / E_pot| <= 1/2                 (BBP95 eq. 2.9)
 //   thermal_and_rotation    alpha + beta_rot <= 1, beta = |E_rot / E_pot|  (BBP95 eq. 2.10)
 //   bound                   E_tot = E_kin + E_th + E_pot < 0
+// A candidate denser than SinkParams::forced_creation_factor x rho_sink (when that is > 0) passes
+// every check after the first (Phantom's f_crit_override: "forcing sink formation despite tests
+// not passing"); SinkCreationTest::forced says so.
 //
 // The clump's energies (ClumpEnergies), relative to the clump's centre of mass x_c and its
 // velocity v_c (Phantom measures them relative to the candidate instead):
@@ -81,6 +84,7 @@ struct SinkCreationTest {
   std::size_t candidate = 0;
   std::vector<std::uint32_t> clump;            // candidate + gas within r_acc (the sink's mass)
   ClumpEnergies energies;                      // set once the cheap checks have passed
+  bool forced = false;                         // made by SinkParams::forced_creation_factor
 };
 
 // Runs the checks in the order of the list above (the cheap ones first). Throws

@@ -18,6 +18,7 @@ namespace sphark {
 // What the events did so far (for the run's summary).
 struct SinkEventLog {
   long creations = 0;
+  long forced_creations = 0;           // of them, made past the checks (SinkParams::forced_creation_factor)
   long accreted_particles = 0;
   Real first_creation_time = -1;
   std::map<SinkCheck, long> refusals;  // candidate refused, by the first check that failed

@@ -78,6 +78,7 @@ SinkParams cloud_sink_params(const CloudCollapseParams& p, const CloudNumbers& c
   s.rho_sink = c.rho_sink;
   s.accretion_radius = c.accretion_radius;
   s.creation_radius = p.creation_radius_over_racc * c.accretion_radius;
+  s.forced_creation_factor = p.forced_sink_factor;
   s.G = 1;
   // the gravity solver's kernel-softened pair potential, symmetrised (Phantom's ptmass_create)
   s.pair_potential = cubic_spline_pair_potential();

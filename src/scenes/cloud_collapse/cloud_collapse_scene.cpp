@@ -42,6 +42,10 @@ void CloudCollapseScene::add_options(OptionParser& p) {
   p.add("--contrast", &params_.density_contrast, "sphere / ambient density", Range{1, 1e4});
   p.add("--rho-sink", &params_.rho_sink_g_cm3, "sink creation density [g/cm^3]", Range{1e-16, 1});
   p.add("--r-acc", &params_.accretion_radius_cm, "sink accretion radius [cm]", Range{1e10, 1e17});
+  p.add("--force-sink-above", &params_.forced_sink_factor,
+        "make the densest gas a sink past the creation checks once it is this many times rho_sink "
+        "(Phantom's f_crit_override; 0: never)",
+        NonNegative{});
   p.add("--alpha", &params_.alpha_visc, "artificial viscosity", Range{0, 10});
   p.add("--alpha-b", &params_.alpha_b, "artificial resistivity of cleaning+resistivity", Range{0, 10});
   p.add("--sigma", &params_.sigma, "cleaning damping, 1/tau = sigma c_h / h", Range{0, 10});
@@ -77,6 +81,8 @@ void CloudCollapseScene::add_options(OptionParser& p) {
 
 void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core, const RunControlOptions&, bool) {
   limit_to_t_end(p, "--diagnostics-every", diagnostics_every_, core.t_end);  // both in t_ff
+  if (params_.forced_sink_factor > 0 && params_.forced_sink_factor <= 1)
+    p.fail("--force-sink-above", "must be 0 (never) or above 1 (a multiple of rho_sink)");
   params_.particles = static_cast<std::size_t>(particles_);
   params_.gravity = parse_gravity_solver(gravity_);
   params_.opening = parse_gravity_opening(opening_);
@@ -118,6 +124,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   append_key_value(text, "contrast", params_.density_contrast);
   append_key_value(text, "rho_sink", params_.rho_sink_g_cm3);
   append_key_value(text, "r_acc", params_.accretion_radius_cm);
+  append_key_value(text, "force_sink_above", params_.forced_sink_factor);
   append_key_value(text, "alpha", params_.alpha_visc);
   append_key_value(text, "alpha_b", params_.alpha_b);
   append_key_value(text, "sigma", params_.sigma);

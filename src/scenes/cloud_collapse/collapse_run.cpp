@@ -92,8 +92,10 @@ std::optional<TimeLoopHooks::Resize> CollapseRun::remove_active(Real t, const Re
 
 void CollapseRun::announce_creation(Real t, const std::optional<TimeLoopHooks::Resize>& r) {
   if (!sinks_.created() || !r) return;
-  std::fprintf(stderr, "cloud_collapse: sink %ld created at t = %.5g t_ff (%zu gas particles left)\n",
-               sinks_.log().creations, t / cloud_.numbers.free_fall_time, cloud_.scheme.particles());
+  std::fprintf(stderr, "cloud_collapse: sink %ld created at t = %.5g t_ff (%zu gas particles left)%s\n",
+               sinks_.log().creations, t / cloud_.numbers.free_fall_time, cloud_.scheme.particles(),
+               sinks_.log().forced_creations > forced_announced_ ? ", forced past the checks (--force-sink-above)" : "");
+  forced_announced_ = sinks_.log().forced_creations;
   write_step_levels("sink_formation", t, r->y.data());
 }
 

@@ -55,6 +55,7 @@ class CollapseRun final : public SceneRun {
   std::filesystem::path dir_;
   SpmhdFrame frame_;
   SinkRunSupport sinks_;  // the sink events, their checkpointed log, the restart's layout
+  long forced_announced_ = 0;  // forced creations announced so far
   std::vector<Real> last_frame_y_;  // the state of the last frame written
   Real last_frame_t_ = 0;
   std::string levels_csv_;  // step_levels.csv so far

@@ -42,6 +42,10 @@ struct CloudCollapseParams {
   Real rho_sink_g_cm3 = 1e-10;
   Real accretion_radius_cm = 1e14;    // 6.7 AU
   Real creation_radius_over_racc = 5; // no new sink within this many r_acc of one (Phantom r_crit)
+  // A sink past the checks once the densest gas is this many times rho_sink (Phantom's
+  // f_crit_override, its smallest allowed value; 0: never): without it the no-control run's
+  // densest gas, refused for div v >= 0, stalls the run at 0.99 t_ff (docs/cloud_collapse.md).
+  Real forced_sink_factor = 10;
 
   // Numerics.
   std::string variant = "cleaning";   // none | cleaning | cleaning+resistivity

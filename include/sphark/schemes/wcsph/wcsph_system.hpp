@@ -18,6 +18,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,6 +74,10 @@ class WcsphSystem final : public OdeSystem {
   // RHS at y when ydot is null (memoised: no evaluation when y is the last state evaluated).
   Real max_stable_dt(Real t, const Real* y, const Real* ydot) override;
   std::string last_error() const override { return error_; }
+  // Multirate (issue #17; src/schemes/wcsph/wcsph_subsets.cpp), serial systems only.
+  bool supports_subsets() const override { return !halo_; }
+  int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override;
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override;
 
   // Pressure and div v (eq. (36)) of state y: evaluates the RHS at y unless y is the state of the
   // last evaluation (bit for bit); the references stay valid until the next evaluation. The
@@ -135,6 +140,8 @@ class WcsphSystem final : public OdeSystem {
   std::vector<Real> grad_particles_;  // distributed: <grad rho> by particle, local + halo (exchanged)
   std::unique_ptr<wcsph_detail::Halo<D>> halo_;  // distributed only
   std::vector<Real> evaluated_y_, scratch_;  // the state of the last rhs(); its derivative buffer
+  std::vector<std::uint32_t> slot_of_particle_, active_slots_;  // rhs_subset: the inverse of slot_particle_, active rows
+  std::vector<char> read_slot_;                                 // rhs_subset: slots whose inside rows are read
   Real max_accel_ = 0;                       // max |dv/dt| of the last rhs()
   std::string error_;
 };
