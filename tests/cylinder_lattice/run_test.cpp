@@ -2,6 +2,7 @@
 // momentum balance with the wall force, short low-resolution runs, ensemble determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -84,6 +85,40 @@ TEST(LatticeConservation, MomentumChangesOnlyByTheWallForce) {
     EXPECT_GT(sys.wall_force().norm(), 1e-6 * scale);
     EXPECT_LT((dP - sys.wall_force()).norm(), 1e-13 * scale) << map_name(map);
   }
+}
+
+// Each particle's own step (issue #17: the lattice's step levels) is max_stable_dt's Courant and
+// force criteria with its own h, sound speed, speed and acceleration; none is below the global
+// step, which takes the smallest h with the largest sound speed, speed and acceleration.
+TEST(LatticeSteps, EachParticlesOwnStepIsTheGlobalCriteriaWithItsOwnValues) {
+  LatticeParams p = lattice_params(lattice_test::undriven(GhostMap::DensityPreserving), 100);
+  p.alpha = 0.5;
+  const std::vector<Real> x = random_fluid_positions(p, 100, 3, 0.7);
+  LatticeSystem sys(100, p);
+  std::vector<Real> y = lattice_test::state(sys, x, Vec<2>::Zero()), f(y.size()), dt(100);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<Real> uv(-0.5, 0.5);
+  for (std::size_t k = sys.velocity_offset(); k < y.size(); ++k) y[k] = uv(rng);
+  y[sys.velocity_offset() + 2 * 40] = 30;  // one fast particle
+  for (int k = 0; k < 2; ++k)  // a particle pressed against another: a large force there
+    y[sys.position_offset() + 2 * 61 + k] = y[sys.position_offset() + 2 * 60 + k] + (k == 0 ? 0.02 : 0.0);
+  ASSERT_EQ(sys.particle_stable_dt(0, y.data(), nullptr, dt.data()), 0) << sys.last_error();
+  ASSERT_EQ(sys.rhs(0, y.data(), f.data()), 0);
+  int force_limited = 0;
+  for (std::size_t a = 0; a < 100; ++a) {
+    const Real c = tait_sound_speed(sys.density()[a], p.rho0, p.sound_speed);
+    const Vec<2> v(y[sys.velocity_offset() + 2 * a], y[sys.velocity_offset() + 2 * a + 1]);
+    const Vec<2> acc(f[sys.velocity_offset() + 2 * a], f[sys.velocity_offset() + 2 * a + 1]);
+    const Real h = sys.smoothing_length()[a];
+    const Real courant = p.cfl * h / (c + v.norm() + 1.2 * p.alpha * c), force = p.cfl * std::sqrt(h / acc.norm());
+    const Real expected = std::min(courant, force);
+    force_limited += force < courant;
+    EXPECT_NEAR(dt[a], expected, 1e-14 * expected) << a;  // (hypot against the norm: a few ulp)
+  }
+  EXPECT_GE(force_limited, 1);
+  EXPECT_EQ(std::min_element(dt.begin(), dt.end()) - dt.begin(), 40);
+  EXPECT_GE(dt[40], sys.max_stable_dt(0, y.data(), f.data()));
+  EXPECT_GT(*std::max_element(dt.begin(), dt.end()), 4 * dt[40]);
 }
 
 TEST(LatticeRun, ShortLowResolutionRunCompletesForBothMaps) {

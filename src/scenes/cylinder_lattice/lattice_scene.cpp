@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <optional>
 #include <sstream>
 
 #include "ensemble_case.hpp"
+#include "sphark/diagnostics/step_levels.hpp"
 #include "sphark/io/csv_writer.hpp"
 #include "sphark/io/visualise.hpp"
 #include "sphark/parallel/distributed_particles.hpp"
@@ -77,7 +79,8 @@ class LatticeRun final : public SceneRun {
     return o;
   }
   std::vector<std::string> columns() const override {
-    return {"t", "kinetic_energy", "min_ghost_h_over_h_ref", "wall_force_x", "wall_force_y", "steps", "rhs_evals"};
+    return {"t", "kinetic_energy", "min_ghost_h_over_h_ref", "wall_force_x", "wall_force_y", "steps", "rhs_evals",
+            "step_levels", "block_speedup_bound"};
   }
   std::vector<Real> diagnostics(Real t, const Real* y, const StepperStats& st) override;
   ParticleFrame frame(Real t, const Real* y) override;
@@ -115,6 +118,14 @@ class LatticeRun final : public SceneRun {
     return !reason_.empty();
   }
   void write_fields(Real t, const Real* y);  // fields_NNNN.csv (distributed: gathered on rank 0)
+  // The particles' own steps on power-of-two levels (issue #17: what block steps could save at
+  // most); none for a distributed run (NaN speedup) or when the evaluation fails.
+  std::optional<StepLevels> own_step_levels(Real t, const Real* y) {
+    if (parts_) return std::nullopt;
+    std::vector<Real> dt(sys_.particles());
+    if (sys_.particle_stable_dt(t, y, nullptr, dt.data()) != 0) return std::nullopt;
+    return step_levels(dt);
+  }
 
   LatticeRunConfig cfg_;
   LatticeSystem sys_;
@@ -147,8 +158,10 @@ std::vector<Real> LatticeRun::diagnostics(Real t, const Real* y, const StepperSt
     world_.allreduce(minima, 3, ReduceOp::Min);
     sampled_g_[0] = minima[0], sampled_g_[1] = minima[1], min_h = minima[2];
   }
+  const std::optional<StepLevels> levels = own_step_levels(t, y);
   return {t, ke, rc == 0 ? min_h / p.h_ref : NAN, f[0], f[1], static_cast<Real>(st.steps),
-          static_cast<Real>(st.rhs_evals)};
+          static_cast<Real>(st.rhs_evals), levels ? static_cast<Real>(levels->count.size()) : NAN,
+          levels ? levels->speedup() : NAN};
 }
 
 void LatticeRun::write_fields(Real t, const Real* y) {

@@ -178,6 +178,14 @@ int GhostWcsph<K>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   ++rhs_calls_;
   evaluated_y_.clear();
   if (int bad = prepare(y)) return bad;
+  pair_forces(ydot);
+  evaluated_y_.assign(y, y + layout_.size());
+  return 0;
+}
+
+// rhs() after prepare(): the pair sums of every real particle at the prepared state, into ydot.
+template <class K>
+void GhostWcsph<K>::pair_forces(Real* ydot) {
   const NeighbourList& nl = search_.list();
   const Real m = p_.mass;
   Real* dx = ydot + layout_.offset(Field::Position);
@@ -218,8 +226,6 @@ int GhostWcsph<K>::rhs(Real /*t*/, const Real* y, Real* ydot) {
   }
   wall_force_ = Vec<2>(fx, fy);
   max_accel_ = std::sqrt(max_acc2);
-  evaluated_y_.assign(y, y + layout_.size());
-  return 0;
 }
 
 // max_a |dv_a/dt| of ydot, or of f(t, y) (evaluated unless y is the last state evaluated).
@@ -261,6 +267,30 @@ Real GhostWcsph<K>::max_stable_dt(Real t, const Real* y, const Real* ydot) {
   Real dt = p_.cfl * h_min_ / (c + std::sqrt(vmax2) + 1.2 * p_.alpha * c);
   if (accel_max > 0) dt = std::min(dt, p_.cfl * std::sqrt(h_min_ / accel_max));
   return dt;
+}
+
+template <class K>
+int GhostWcsph<K>::particle_stable_dt(Real /*t*/, const Real* y, const Real* ydot, Real* dt) {
+  if (halo_) throw std::logic_error("GhostWcsph::particle_stable_dt: not for a distributed scheme");
+  // Without ydot the forces at y, from the densities already solved there if they were: a run's
+  // diagnostics ask here after prepare(y), and a second solve would move h at round-off and with
+  // it the rest of the run (it starts each solve from the last h). The ghosts' velocities follow
+  // the particles' (mirrored), so new velocities at the same positions need a prepare(y) too.
+  const Real* v = y + layout_.offset(Field::Velocity);
+  const bool same_velocities = prepared_ && std::equal(v, v + 2 * n_, vall_.begin());
+  if ((same_velocities ? prepare_if_moved(y) : prepare(y)) != 0) return 1;
+  if (!ydot) {
+    scratch_.resize(layout_.size());
+    pair_forces(scratch_.data());
+    ydot = scratch_.data();
+  }
+  const Real* dv = ydot + layout_.offset(Field::Velocity);
+  for (std::size_t a = 0; a < n_; ++a) {
+    const Real c = tait_sound_speed(rho_[a], p_.rho0, p_.sound_speed), accel = std::hypot(dv[2 * a], dv[2 * a + 1]);
+    dt[a] = p_.cfl * h_[a] / (c + std::hypot(v[2 * a], v[2 * a + 1]) + 1.2 * p_.alpha * c);  // as max_stable_dt
+    if (accel > 0) dt[a] = std::min(dt[a], p_.cfl * std::sqrt(h_[a] / accel));
+  }
+  return 0;
 }
 
 template <class K>

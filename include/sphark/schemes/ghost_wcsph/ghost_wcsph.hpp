@@ -102,6 +102,10 @@ class GhostWcsph : public OdeSystem {
   std::size_t position_size() const override { return layout_.field_size(Field::Position); }
   // CFL and force criteria at y (force: ydot's accelerations, or f(t, y) when ydot is null).
   Real max_stable_dt(Real t, const Real* y, const Real* ydot) override;
+  // Each particle's own step (serial only): max_stable_dt's criteria with its own h, sound speed,
+  // speed and acceleration (ydot's, or from an evaluation at y); no subset evaluation
+  // (supports_subsets() stays false): the lattice reports its step levels (issue #17).
+  int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override;
   int num_roots() const override { return 2; }
   int roots(Real t, const Real* y, Real* g) override;
   std::string last_error() const override { return error_; }
@@ -134,6 +138,7 @@ class GhostWcsph : public OdeSystem {
   long rhs_calls() const { return rhs_calls_; }
 
  private:
+  void pair_forces(Real* ydot);  // rhs() after prepare(): the forces of the prepared state
   int solve_densities(std::size_t total);
   void pressures(std::size_t total);  // P and P / (Omega rho^2) of every slot
   // Distributed (ghost_wcsph_distributed.cpp): the collective prepare, its solve with the halo,
