@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "sphark/integrate/stepper.hpp"
+#include "sphark/run/signals.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 extern "C" std::size_t __sanitizer_get_current_allocated_bytes();
@@ -94,6 +95,8 @@ ProbeMeasurement measure_probe(const std::function<ProbeSubject()>& build, Real 
   std::vector<Real> y = s.y0;
   StepperOptions o = s.stepper;
   o.max_steps = std::min(o.max_steps, 200L);
+  // SIGINT/SIGTERM end the probe at its next evaluation (the caller then stops the set-up)
+  if (!o.interrupt) o.interrupt = [] { return stop_requested() != 0; };
   const Real stable = s.system->max_stable_dt(0, y.data(), nullptr);
   const Real dt = o.fixed_dt > 0 ? o.fixed_dt : o.cfl_safety * stable;
   const Real unit = std::isfinite(dt) && dt > 0 ? dt : 1e-7 * t_end;

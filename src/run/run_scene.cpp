@@ -90,7 +90,9 @@ void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* 
   }
   r.stored_options.assign(args.begin() + 1, args.end());
   r.core.threads = apply_thread_count(r.core.threads, scene.program());  // the probes run on the run's threads
-  for (const std::string& name : r.runs) r.costs[name] = detail::plan_cost(scene, name, r.core, parser);
+  install_stop_handlers();  // a probe stops at a request; run_scene_main then ends the set-up
+  for (const std::string& name : r.runs)
+    if (stop_requested() == 0) r.costs[name] = detail::plan_cost(scene, name, r.core, parser);
 }
 
 TimeLoopSettings default_settings(const Scene& scene, const std::string& name, const ParsedRun& p,
@@ -336,14 +338,19 @@ int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& worl
   // run.json: options, version, start (distributed: rank 0's, written last)
   RootRecord record(world.rank() == 0, [&] { return start_run_record(p.parser, p.core.out, world.size()); });
   // A stop during a set-up without a poll: no state to checkpoint, the record says so.
-  SetupWatchdog watchdog([&](int sig) {
+  auto stopped_in_setup = [&](int sig) {
     std::fprintf(stderr, "%s: stopped by signal %d during the set-up (no state to checkpoint yet)\n", program.c_str(), sig);
-    record.finish_with_exit_code(128 + sig, "stopped by signal " + std::to_string(sig) + " during the set-up");
-  });
+    return record.finish_with_exit_code(128 + sig, "stopped by signal " + std::to_string(sig) + " during the set-up");
+  };
+  SetupWatchdog watchdog([&](int sig) { stopped_in_setup(sig); });
   if (restart) {
     record.set("restart", restart->text("run") + " from t = " + std::to_string(restart->t));
     record.write();
   }
+  const int probe_stop = world.distributed()
+                             ? static_cast<int>(world.allreduce(std::int64_t{stop_requested()}, ReduceOp::Max))
+                             : stop_requested();
+  if (probe_stop != 0) return stopped_in_setup(probe_stop);  // during the cost probes (parse): nothing run yet
   try {
     if (const std::optional<int> code = scene.run_instead(p.core)) return record.finish_with_exit_code(*code);
     int status = 0;

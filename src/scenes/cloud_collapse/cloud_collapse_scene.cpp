@@ -29,7 +29,7 @@ void CloudCollapseScene::set_defaults(CoreOptions& core) {
 void CloudCollapseScene::add_options(OptionParser& p) {
   std::vector<std::string> variants = cloud_collapse_variants();
   variants.push_back("both");
-  p.add("--variant", &variant_, "div B control (both: cleaning, then none)", OneOf{variants});
+  p.add("--variant", &variant_, "div B control (both: cleaning+resistivity, then none)", OneOf{variants});
   p.add("--particles", &particles_,
         "particles in the sphere requested (the ambient adds ~0.476 x; below 1000 the ambient's smoothing "
         "lengths exceed half the box)",
@@ -100,7 +100,7 @@ void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core,
 Real CloudCollapseScene::time_unit() const { return free_fall_time_; }
 
 std::vector<std::string> CloudCollapseScene::run_names() const {
-  if (variant_ == "both") return {"cleaning", "none"};  // a failing none does not stop cleaning
+  if (variant_ == "both") return {CloudCollapseParams{}.variant, "none"};  // a failing none does not stop the cleaned run
   return {variant_};
 }
 

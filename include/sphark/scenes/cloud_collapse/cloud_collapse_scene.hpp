@@ -1,9 +1,10 @@
 #pragma once
 // The cloud-collapse example (seed 000 §IV-C, Figs. 4-6; issue #16) for the run driver
-// (run/scene.hpp). One run per --variant (none | cleaning | cleaning+resistivity, or "both": cleaning then
-// none); each writes <out>/<variant>/diagnostics.csv (the issue's columns plus the
-// step-size record), the VTK series (gas and sinks), step_levels.csv (the particles' own stable
-// steps on power-of-two levels when the sink forms and at the end), column-density maps along y
+// (run/scene.hpp). One run per --variant (none | cleaning | cleaning+resistivity, or "both": the
+// default cleaned variant, cleaning+resistivity, then none); each writes
+// <out>/<variant>/diagnostics.csv (the issue's columns plus the step-size record), the VTK
+// series (gas and sinks), step_levels.csv (the particles' own stable steps on power-of-two
+// levels when the sink forms and at the end), column-density maps along y
 // (the whole cloud and a zoom on the sink) and sinks.csv (creation and accretion); the report
 // draws the figures from every variant present under <out> (vis/cloud_collapse.py).
 // summary_<variant>.csv per run: the sink's formation time (t_ff), the peaks of density, of mean
@@ -44,11 +45,11 @@ class CloudCollapseScene final : public Scene {
 
  private:
   CloudCollapseParams params_;
-  std::string variant_ = "cleaning";
+  std::string variant_ = "cleaning+resistivity";  // CloudCollapseParams::variant's default
   std::string gravity_ = "tree";
   std::string opening_ = "fixed";
   std::string subset_density_ = "predicted";
-  long particles_ = 2000;
+  long particles_ = static_cast<long>(CloudCollapseParams{}.particles);
   bool local_ch_ = false, no_tensile_correction_ = false;
   Real diagnostics_every_ = 0.005;  // t_ff
   Real free_fall_time_ = 0;         // code units, from the parameters
