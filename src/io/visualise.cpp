@@ -4,14 +4,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <csignal>
 #include <cerrno>
 #include <chrono>
-#include <thread>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
+#include <random>
+#include <thread>
 
 extern char** environ;
 
@@ -92,14 +93,17 @@ ProcessResult run_process(const std::vector<std::string>& argv_in, double timeou
 }
 
 namespace {
-// The X display number from which `xvfb-run -a` looks for a free one: another for every call of
-// this process, and apart from other processes'. With one start for all (xvfb-run's 99), a call
-// right after another reused the display whose server was still shutting down, and that server
-// removed the new one's socket on its way out ("bad X server connection").
+// The X display number from which `xvfb-run -a` looks for a free one: drawn at random from 60,000
+// for every call. With one start for all (xvfb-run's 99), a call right after another reused the
+// display whose server was still shutting down, and that server removed the new one's socket on
+// its way out ("bad X server connection"); with numbers from the process id (pid mod 400) two
+// test processes 400 ids apart met the same way in a fresh-clone CI run (session 27). A random
+// start makes reusing a display of the last seconds unlikely for any pair of callers.
 std::string first_display_to_try() {
-  static std::atomic<unsigned> calls{0};
-  const unsigned call = calls++ % 64, process = static_cast<unsigned>(::getpid()) % 400;
-  return std::to_string(100 + 64 * process + call);
+  static std::mutex mutex;
+  static std::mt19937 draw(std::random_device{}() ^ static_cast<unsigned>(::getpid()));
+  std::lock_guard<std::mutex> lock(mutex);
+  return std::to_string(100 + std::uniform_int_distribution<unsigned>(0, 59999)(draw));
 }
 }  // namespace
 
