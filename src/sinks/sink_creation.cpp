@@ -1,6 +1,7 @@
 #include "sphark/sinks/sink_creation.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 #include "sphark/sinks/sink_accretion.hpp"
 
@@ -173,11 +174,11 @@ SinkUpdate sink_made_of(const GasView& gas, const std::vector<Sink>& sinks, cons
 }
 
 SinkUpdate create_sink_if_allowed(const GasView& gas, const std::vector<Sink>& sinks, const SinkParams& params,
-                                  SinkCheck* reason) {
-  const SinkCreationTest t = test_sink_creation(gas, sinks, params);
-  if (reason) *reason = t.result;
-  if (t.result != SinkCheck::ok) return SinkUpdate{sinks, {}, {}};
-  return sink_made_of(gas, sinks, t.clump, params);
+                                  SinkCreationTest* test) {
+  SinkCreationTest t = test_sink_creation(gas, sinks, params);
+  SinkUpdate up = t.result == SinkCheck::ok ? sink_made_of(gas, sinks, t.clump, params) : SinkUpdate{sinks, {}, {}};
+  if (test) *test = std::move(t);
+  return up;
 }
 
 }  // namespace sphark

@@ -216,16 +216,16 @@ std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& s, Real t, cons
   // came within a factor 10 of rho_sink (a step changes the density by a few per cent at most).
   if (s.rho().empty() || *std::max_element(s.rho().begin(), s.rho().end()) < 0.1 * params.rho_sink) return std::nullopt;
   const GasArrays gas = gas_of(s, t, y);
-  const SinkCreationTest test = test_sink_creation(gas.view, sinks, params);
-  if (test.result != SinkCheck::ok) {
+  SinkCreationTest test;
+  const SinkUpdate created = create_sink_if_allowed(gas.view, sinks, params, &test);
+  if (created.removed.empty()) {
     if (test.result != SinkCheck::no_candidate) ++log.refusals[test.result];
     return std::nullopt;
   }
-  if (test.clump.size() >= s.particles()) {
+  if (created.removed.size() >= s.particles()) {
     log.gas_exhausted = true;
     return std::nullopt;
   }
-  const SinkUpdate created = sink_made_of(gas.view, sinks, test.clump, params);
   ++log.creations;
   if (test.forced) ++log.forced_creations;
   if (log.first_creation_time < 0) log.first_creation_time = t;

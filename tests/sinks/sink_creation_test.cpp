@@ -209,7 +209,9 @@ TEST(SinkCreation, ForcedAboveTheFactorPastEveryCheckButTheExistingSinks) {
     EXPECT_EQ(t.result, SinkCheck::ok) << k;
     EXPECT_TRUE(t.forced);
     EXPECT_EQ(t.clump, c.clump()) << k;
-    EXPECT_EQ(create_sink_if_allowed(c.view(), {}, c.params).removed, c.clump()) << k;
+    SinkCreationTest made;
+    EXPECT_EQ(create_sink_if_allowed(c.view(), {}, c.params, &made).removed, c.clump()) << k;
+    EXPECT_TRUE(made.forced) << k;  // what the run's event log counts
     Sink s;
     s.x = Vec<3>(0, 1.9, 0), s.mass = 0.1, s.accretion_radius = 1;
     EXPECT_EQ(test_sink_creation(c.view(), {s}, c.params).result, SinkCheck::inside_existing_sink) << k;

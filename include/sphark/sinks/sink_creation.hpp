@@ -101,8 +101,8 @@ SinkUpdate sink_made_of(const GasView& gas, const std::vector<Sink>& sinks, cons
                         const SinkParams& params);
 
 // test_sink_creation and, if it passes, the new sink appended (its clump removed).
-// result.removed is empty when no sink was created.
+// result.removed is empty when no sink was created; *test (if given) is the test made.
 SinkUpdate create_sink_if_allowed(const GasView& gas, const std::vector<Sink>& sinks, const SinkParams& params,
-                                  SinkCheck* reason = nullptr);
+                                  SinkCreationTest* test = nullptr);
 
 }  // namespace sphark

@@ -263,9 +263,14 @@ Real GhostWcsph<K>::max_stable_dt(Real t, const Real* y, const Real* ydot) {
     vmax2 = maxima[0], rho_max = maxima[1], accel_max = maxima[2];
   }
   const Real c = tait_sound_speed(rho_max, p_.rho0, p_.sound_speed);
-  // Courant condition with the viscous signal speed (Monaghan 1992) and the force condition.
-  Real dt = p_.cfl * h_min_ / (c + std::sqrt(vmax2) + 1.2 * p_.alpha * c);
-  if (accel_max > 0) dt = std::min(dt, p_.cfl * std::sqrt(h_min_ / accel_max));
+  return stable_step(h_min_, c, std::sqrt(vmax2), accel_max);
+}
+
+// Courant condition with the viscous signal speed (Monaghan 1992) and the force condition.
+template <class K>
+Real GhostWcsph<K>::stable_step(Real h, Real c, Real speed, Real accel) const {
+  Real dt = p_.cfl * h / (c + speed + 1.2 * p_.alpha * c);
+  if (accel > 0) dt = std::min(dt, p_.cfl * std::sqrt(h / accel));
   return dt;
 }
 
@@ -287,8 +292,7 @@ int GhostWcsph<K>::particle_stable_dt(Real /*t*/, const Real* y, const Real* ydo
   const Real* dv = ydot + layout_.offset(Field::Velocity);
   for (std::size_t a = 0; a < n_; ++a) {
     const Real c = tait_sound_speed(rho_[a], p_.rho0, p_.sound_speed), accel = std::hypot(dv[2 * a], dv[2 * a + 1]);
-    dt[a] = p_.cfl * h_[a] / (c + std::hypot(v[2 * a], v[2 * a + 1]) + 1.2 * p_.alpha * c);  // as max_stable_dt
-    if (accel > 0) dt[a] = std::min(dt[a], p_.cfl * std::sqrt(h_[a] / accel));
+    dt[a] = stable_step(h_[a], c, std::hypot(v[2 * a], v[2 * a + 1]), accel);
   }
   return 0;
 }

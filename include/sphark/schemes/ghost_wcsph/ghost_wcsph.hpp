@@ -139,6 +139,7 @@ class GhostWcsph : public OdeSystem {
 
  private:
   void pair_forces(Real* ydot);  // rhs() after prepare(): the forces of the prepared state
+  Real stable_step(Real h, Real c, Real speed, Real accel) const;  // max_stable_dt's criteria
   int solve_densities(std::size_t total);
   void pressures(std::size_t total);  // P and P / (Omega rho^2) of every slot
   // Distributed (ghost_wcsph_distributed.cpp): the collective prepare, its solve with the halo,
