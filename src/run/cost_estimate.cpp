@@ -204,7 +204,7 @@ std::string cost_line(const std::string& program, const std::string& run, const 
     std::snprintf(dt, sizeof dt, "%.3g", e.first_step);
     line += std::string(", ") + (e.steps_at_least ? ">= " : "") + count_text(e.steps) + " steps (first dt " + dt + ")";
   }
-  if (std::isfinite(e.seconds)) line += ", ~" + duration_text(e.seconds);
+  if (std::isfinite(e.seconds)) line += (e.steps_at_least ? ", >= " : ", ~") + duration_text(e.seconds);
   return line;
 }
 

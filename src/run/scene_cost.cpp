@@ -50,6 +50,7 @@ std::string first_line(const std::string& program, const std::string& run, const
   e.particles = static_cast<double>(built.layout().particles());
   e.bytes = e.particles * e.bytes_per_particle;
   estimate_time(e, built.system(), so, t0, y0, t_end, longest_step, cost.probe);
+  if (built.stable_step_falls()) e.steps_at_least = true;
   return cost_line(program, run, e);
 }
 

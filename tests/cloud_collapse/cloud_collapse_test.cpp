@@ -389,6 +389,7 @@ TEST(CloudLists, AListRadiusIsCutAtHalfTheBoxNotFailed) {
   ASSERT_EQ(cloud.scheme.rhs(0, cloud.y0.data(), ydot.data()), 0) << cloud.scheme.last_error();
   const Real h_max = *std::max_element(cloud.scheme.h().begin(), cloud.scheme.h().end());
   EXPECT_LT(2 * h_max, 0.5 * (cloud.box.hi[0] - cloud.box.lo[0]));  // the support itself fits
+  EXPECT_EQ(cloud.scheme.smoothing_lengths_at_cap(), 0u);  // every h a root of (4)-(5)
 }
 
 }  // namespace

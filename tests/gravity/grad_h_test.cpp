@@ -131,21 +131,3 @@ TYPED_TEST(GradHGravityTest, ForceIsMinusTheEnergyGradient) {
   EXPECT_GT(err_without, 1e-3 * scale);
 }
 
-// The grad-h pair term with each particle's kernel scale given (what SpmhdScheme::gravity_pass
-// calls, the scales computed once per particle) equals the plain one bit for bit.
-TEST(GradHGravity, PairWithGivenScalesIsBitForBitThePlainOne) {
-  using K = RadialKernel<3, CubicSplineShape>;
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<Real> u(0.0, 1.0);
-  int within = 0;
-  for (int k = 0; k < 1000; ++k) {
-    const Real h_a = 0.05 + u(rng), h_b = 0.05 + u(rng), r = 2.2 * std::max(h_a, h_b) * u(rng);
-    const Vec<3> x_ab = r * Vec<3>(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
-    const Vec<3> plain = grad_h_gravity_pair<K>(1.3, 0.7, x_ab, r, h_a, h_b, 0.4, -0.9);
-    const Vec<3> scaled = grad_h_gravity_pair<K>(1.3, 0.7, x_ab, r, h_a, h_b, 0.4, -0.9, K::f_over_r_scale(h_a),
-                                                 K::f_over_r_scale(h_b));
-    for (int d = 0; d < 3; ++d) ASSERT_EQ(plain[d], scaled[d]) << k;
-    within += plain.norm() > 0;
-  }
-  EXPECT_GT(within, 500);  // most pairs inside the support: the comparison is not of zeros
-}

@@ -171,4 +171,22 @@ TEST(Issue21, EveryRunSaysWhatItWillCostOnItsFirstLine) {
   EXPECT_EQ(first.rfind("orszag_tang: cleaning run: predicted 288 particles, ", 0), 0u) << first;
   EXPECT_TRUE(contains(first, " available, ")) << first;
   EXPECT_TRUE(contains(first, " steps (first dt ")) << first;
+  EXPECT_FALSE(contains(first, ">= ")) << first;  // its step does not only fall: an estimate, "~"
+  EXPECT_TRUE(contains(first, "), ~")) << first;
+}
+
+// A collapse's step falls by orders of magnitude to the sink (SceneRun::stable_step_falls): the
+// steps and time counted from its first step are lower bounds, and say so.
+TEST(Issue21, ACollapseCallsItsStepsAndTimeLowerBounds) {
+  TempDir dir;
+  const Timed r = run_timed(require_example("cloud_collapse"),
+                            {"--particles", "1000", "--t-end", "0.02", "--threads", "1", "--no-render", "--out",
+                             (dir.path() / "o").string()},
+                            dir.path(), 120);
+  ASSERT_EQ(r.f.exit_code, 0) << r.f.err;
+  const std::string first = r.f.err.substr(0, r.f.err.find('\n'));
+  std::printf("%s\n", first.c_str());
+  EXPECT_TRUE(contains(first, ", >= ")) << first;
+  EXPECT_TRUE(contains(first, " steps (first dt ")) << first;
+  EXPECT_TRUE(contains(first, "), >= ")) << first;  // the time too
 }

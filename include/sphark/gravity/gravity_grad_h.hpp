@@ -16,6 +16,8 @@
 //                          zeta_a = zeta_finish(s, h_a, rho_a);
 // and in the force loop:   a_a += grad_h_gravity_pair<K>(G, m_b, x_a - x_b, r_ab, h_a, h_b,
 //                                                       zeta_a / Omega_a, zeta_b / Omega_b).
+// (The SPMHD scheme adds the same term as an isotropic stress -(G/2) zeta/Omega in its pair
+// loop: src/schemes/spmhd/spmhd_forces.cpp, pair_loop_arrays.)
 #include "sphark/core/types.hpp"
 #include "sphark/gravity/kernel_softening.hpp"
 
@@ -44,14 +46,6 @@ template <class K>
 inline Vec<3> grad_h_gravity_pair(Real G, Real m_b, const Vec<3>& x_ab, Real r_ab, Real h_a, Real h_b, Real zo_a,
                                   Real zo_b) {
   const Real f = zo_a * K::f_over_r(r_ab, h_a) + zo_b * K::f_over_r(r_ab, h_b);
-  return (-0.5 * G * m_b * f) * x_ab;
-}
-
-// The same with each particle's f_over_r_scale (kernels.hpp) given: bit for bit the value above.
-template <class K>
-inline Vec<3> grad_h_gravity_pair(Real G, Real m_b, const Vec<3>& x_ab, Real r_ab, Real h_a, Real h_b, Real zo_a,
-                                  Real zo_b, Real scale_a, Real scale_b) {
-  const Real f = zo_a * K::f_over_r_scaled(r_ab, h_a, scale_a) + zo_b * K::f_over_r_scaled(r_ab, h_b, scale_b);
   return (-0.5 * G * m_b * f) * x_ab;
 }
 

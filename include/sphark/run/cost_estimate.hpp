@@ -69,7 +69,7 @@ struct CostEstimate {
   std::optional<double> available;  // memory_available_bytes()
   double first_step = std::numeric_limits<double>::quiet_NaN();  // dt0
   double steps = std::numeric_limits<double>::quiet_NaN();
-  bool steps_at_least = false;  // adaptive ARKODE: first_step bounds every step (the cap, or an uncapped run's stability reach)
+  bool steps_at_least = false;  // first_step bounds every step: adaptive ARKODE (the cap, or an uncapped run's stability reach), a scene whose stable step only falls (SceneRun::stable_step_falls)
   double seconds = std::numeric_limits<double>::quiet_NaN();
   bool fits() const { return !available || bytes <= *available; }
   bool longer_than_a_day() const { return seconds > 86400; }

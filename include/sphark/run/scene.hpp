@@ -68,6 +68,9 @@ class SceneRun {
   virtual bool finished(Real /*t*/) { return false; }
   virtual bool root(Real /*t*/, const std::vector<int>& /*found*/) { return false; }
   virtual std::vector<std::pair<std::string, Real*>> saved_numbers() { return {}; }
+  // The stable step only falls as the run goes (a collapse): the steps and time the first line
+  // predicts from the first step are lower bounds (printed ">=").
+  virtual bool stable_step_falls() const { return false; }
   // A run whose particle set changes between steps (sink particles created, gas accreted): the
   // loop then steps one by one and calls after_step (TimeLoopHooks::after_step, restart_layout).
   virtual bool changes_particles() const { return false; }

@@ -34,7 +34,7 @@ std::vector<std::string> CollapseRun::columns() const {
           "kinetic_energy", "magnetic_energy", "thermal_energy", "psi_energy", "potential_energy", "total_energy",
           "n_sinks", "sink_mass", "sink_x", "sink_y", "sink_z", "angular_momentum_z", "momentum_rate",
           "tensile_momentum_rate", "other_momentum_rate", "dt_courant", "dt_force", "gas_particles", "steps",
-          "rhs_evals", "particle_evals"};
+          "rhs_evals", "particle_evals", "particles_at_h_max"};
 }
 
 std::vector<Real> CollapseRun::diagnostics(Real t, const Real* y, const StepperStats& st) {
@@ -55,7 +55,8 @@ std::vector<Real> CollapseRun::diagnostics(Real t, const Real* y, const StepperS
           ns ? xs[0] : kNaN, ns ? xs[1] : kNaN, ns ? xs[2] : kNaN, angular_momentum_z(s, y), budget.total.norm(),
           budget.tensile.norm(), (budget.total - budget.tensile).norm(), steps_ok ? minimum(courant) : kNaN,
           steps_ok ? minimum(force) : kNaN, static_cast<Real>(s.particles()), static_cast<Real>(st.steps),
-          static_cast<Real>(st.rhs_evals), static_cast<Real>(st.particle_evals)};
+          static_cast<Real>(st.rhs_evals), static_cast<Real>(st.particle_evals),
+          static_cast<Real>(s.smoothing_lengths_at_cap())};
 }
 
 ParticleFrame CollapseRun::frame(Real t, const Real* y) {

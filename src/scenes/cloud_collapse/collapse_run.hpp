@@ -25,6 +25,7 @@ class CollapseRun final : public SceneRun {
   ParticleFrame frame(Real t, const Real* y) override;
   std::vector<std::pair<std::string, Real*>> saved_numbers() override;
   bool changes_particles() const override { return true; }
+  bool stable_step_falls() const override { return true; }  // the densest gas's step, to the sink
   std::optional<TimeLoopHooks::Resize> after_step(Real t, const Real* y,
                                                   const TimeLoopHooks::CarriedData& carried) override;
   StateLayout restart_layout(const Checkpoint& c) override;

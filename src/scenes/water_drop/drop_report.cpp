@@ -78,7 +78,10 @@ void make_drop_pictures(const std::filesystem::path& out, const DropResults& res
     for (const auto& [label, r] : results)
       job.args.insert(job.args.end(), {"--csv", (out / label / "diagnostics.csv").string() + ":" + run_legend(label)});
     std::string styles;  // the seed's runs solid, delta-SPH's dashed
-    for (const auto& [label, r] : results) styles += (styles.empty() ? "" : ",") + std::string(label.rfind("seed_", 0) == 0 ? "-" : "--");
+    for (const auto& [label, r] : results) {
+      if (!styles.empty()) styles += ',';
+      styles += label.rfind("seed_", 0) == 0 ? "-" : "--";
+    }
     job.args.insert(job.args.end(), {"--styles=" + styles, "--x", "t", "--y", y, "--ylabel", ylabel, "--title", title, "--out", (out / png).string()});
     if (logy) job.args.push_back("--logy");
     jobs.push_back(std::move(job));

@@ -41,11 +41,13 @@ void SpmhdScheme<D, K>::predict_smoothing_lengths(Real t) {
   if (t_h_slot_.size() != n_) t_h_slot_.assign(n_, t_h_);
   if (solved_at_x_.size() != n_) solved_at_x_.assign(n_, 0);
   const bool predict = opt_.predict_h && h_rate_known_ && opt_.evolve_particles;
+  const Real cap = h_cap();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n_; ++i) {
     if (solved_at_x_[i]) continue;
     const Real dt_over_d = predict && t != t_h_slot_[i] ? (t - t_h_slot_[i]) / D : 0;
     h_[i] = dt_over_d != 0 ? h_eval_[i] * std::clamp(1 + dt_over_d * divv_[i], Real(0.8), Real(1.25)) : h_eval_[i];
+    h_[i] = std::min(h_[i], cap);
   }
 }
 
@@ -175,18 +177,19 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
   if (pair_loop_simd() == PairLoopSimd::Avx512) sums = spmhd_detail::density_sums_avx512<D, K>;
   if (pair_loop_simd() == PairLoopSimd::Avx2) sums = spmhd_detail::density_sums_avx2<D, K>;
   if (pair_loop_simd() == PairLoopSimd::Sse2) sums = spmhd_detail::density_sums<simd::Real2, D, K>;
-  std::size_t not_converged = 0, outside = 0, iterations = 0;
+  std::size_t not_converged = 0, outside = 0, iterations = 0, capped = 0;
   Real h_max = 0;
   const std::size_t rows = only ? only->size() : n_;
   const bool with_zeta = opt_.self_gravity && D == 3;  // the grad-h term of the gravity (spmhd_gravity.cpp)
-#pragma omp parallel reduction(+ : not_converged, outside, iterations) reduction(max : h_max)
+  const Real cap = h_cap();
+#pragma omp parallel reduction(+ : not_converged, outside, iterations, capped) reduction(max : h_max)
   {
     Real* rc = cand_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
     Real* mc = rc + room;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t r = 0; r < rows; ++r) {
       const std::size_t i = only ? (*only)[r] : r;
-      const Real h_list = list_h_served_[i];
+      const Real h_list = std::min(list_h_served_[i], cap);
       // Candidates: every listed neighbour that a trial h <= h_reach can reach, in list order,
       // neighbour j in lane (particle number of j) mod W: entry c W + l of lane l. Each lane's
       // sum then runs over the same neighbours in the same order whatever other candidates the
@@ -246,15 +249,24 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
         if (hh > h_reach) gather(h_list);
         zeta_over_omega_[i] = gravitational_zeta_of(rc, mc, nc, lanes, m[i], hh, rho_[i]) / omega_[i];
       }
-      h_max = std::max(h_max, hh);
       if (root_beyond_list<D>(density_at, hh, h_list, m_eta, tol)) {
-        ++outside;
-        list_h_needed_[i] = 1.5 * h_list;
+        if (h_list < cap) {
+          ++outside;
+          list_h_needed_[i] = std::min(1.5 * h_list, cap);
+        } else {  // SpmhdOptions::h_max: the sum (4) at the cap, h independent of rho there
+          ++capped;
+          Real drho_dh = 0;
+          density_at(cap, rho_[i], drho_dh);
+          h_[i] = h_eval_[i] = cap;
+          omega_[i] = 1;
+          if (with_zeta) zeta_over_omega_[i] = 0;
+        }
       }
+      h_max = std::max(h_max, h_[i]);
     }
   }
   h_iterations_ += static_cast<double>(iterations);
-  return {not_converged, outside, iterations, h_max};
+  return {not_converged, outside, iterations, capped, h_max};
 }
 
 // zeta_a of the gravitational grad-h term (Price & Monaghan 2007, §3; gravity/gravity_grad_h.hpp)
@@ -275,6 +287,24 @@ Real SpmhdScheme<D, K>::gravitational_zeta_of(const Real* r, const Real* m, std:
     return zeta_finish(sum, h_a, rho_a);
   }
   return 0;
+}
+
+namespace {
+// SpmhdOptions::h_max = 0 in a periodic box: the support at most 1 / 1.5 of the half period, so
+// that a list with a skin of 0.5 still fits the minimum image at the cap (a longer skin is cut
+// there: spmhd_lists.cpp). A constant, not the skin: results do not depend on the skin.
+constexpr Real kBoxCapReserve = 1.5;
+}  // namespace
+
+template <int D, class K>
+Real SpmhdScheme<D, K>::h_cap() const {
+  return opt_.h_max > 0 ? opt_.h_max : half_period() / (K::support * kBoxCapReserve);
+}
+
+template <int D, class K>
+std::size_t SpmhdScheme<D, K>::smoothing_lengths_at_cap() const {
+  const Real cap = h_cap();
+  return static_cast<std::size_t>(std::count_if(h_eval_.begin(), h_eval_.begin() + n_, [cap](Real h) { return h >= cap; }));
 }
 
 // The first guess of h: eta (volume / N)^(1/D) from the bounding box of all positions.
@@ -303,6 +333,8 @@ void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
 
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
   template void SpmhdScheme<D, K>::first_smoothing_lengths(const Real*, bool);                  \
+  template Real SpmhdScheme<D, K>::h_cap() const;                                               \
+  template std::size_t SpmhdScheme<D, K>::smoothing_lengths_at_cap() const;                     \
   template int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real, const Real*); \
   template void SpmhdScheme<D, K>::predict_smoothing_lengths(Real);                  \
   template void SpmhdScheme<D, K>::set_h_time(Real);                                 \

@@ -92,6 +92,12 @@ void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
   using R = Record<D>;
   const Real* psi = opt_.cleaning != Cleaning::None ? psi_.data() : nullptr;
   const bool energy = layout_.has(Field::InternalEnergy);  // not with a barotropic EOS
+  // Self-gravity's grad-h term (Price & Monaghan 2007, §3; gravity/gravity_grad_h.hpp),
+  //   dv_a/dt += -(G/2) sum_b m_b [zeta_a/Omega_a grad_a W_ab(h_a) + zeta_b/Omega_b grad_a W_ab(h_b)],
+  // has the shape of eq. (6) with an isotropic stress: it rides in S = M / (Omega rho^2) as
+  // -(G/2) zeta/Omega on the diagonal (the same pairs, the same kernel gradients; one pass).
+  const bool grad_h_gravity = opt_.self_gravity && D == 3 && zeta_over_omega_.size() >= n_all_;
+  const Real half_g = 0.5 * opt_.G;
   records_.resize(R::size * n_all_);  // this rank's particles and the halo (distributed)
   const bool stream = stream_records(sizeof(Real) * records_.size());
 #pragma omp parallel
@@ -119,6 +125,8 @@ void SpmhdScheme<D, K>::pair_loop_arrays(const Real* /*y*/) {
       r[R::psi] = psi ? psi[a] : 0;
       for (int k = 0; k < 3; ++k) r[R::B + k] = B[k];
       mhd::maxwell_stress_over_omega_rho2<D>(B, P_[a], o, r + R::stress);  // eq. (8)
+      if (grad_h_gravity)
+        for (int k = 0; k < D; ++k) r[R::stress + D * k + k] -= half_g * zeta_over_omega_[a];
       for (int k = R::bo + D; k < R::size; ++k) r[k] = 0;
       store_record(records_.data() + R::size * a, r, R::size, stream);
     }

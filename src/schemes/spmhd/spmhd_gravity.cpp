@@ -1,13 +1,14 @@
 // Self-gravity of the SPMHD gas (3D): the kernel-softened pair forces with softening length =
-// each particle's own h, from the tree or direct summation (gravity/self_gravity.hpp), plus the
-// gravitational grad-h term that makes the force the gradient of the energy while h adapts
-// (Price & Monaghan 2007, §3; gravity/gravity_grad_h.hpp):
+// each particle's own h, from the tree or direct summation (gravity/self_gravity.hpp; the tree
+// uses the positions as given: isolated gravity, see docs/gravity.md). The gravitational grad-h
+// term that makes the force the gradient of the energy while h adapts (Price & Monaghan 2007,
+// §3; gravity/gravity_grad_h.hpp),
 //   a_a += -(G/2) sum_b m_b [ zeta_a/Omega_a grad_a W_ab(h_a) + zeta_b/Omega_b grad_a W_ab(h_b) ]
-//   zeta_a = (dh_a/drho_a) sum_b m_b dphi(r_ab, h_a)/dh_a   (b = a included)
-// zeta is summed in the density solve, over its candidates at the solved h
-// (spmhd_density.cpp). The pair sums run over the scheme's neighbour lists (minimum image in a periodic box; the tree
-// uses the positions as given: isolated gravity, see docs/gravity.md). Gather form: each particle
-// writes only its own acceleration, results independent of the thread count.
+//   zeta_a = (dh_a/drho_a) sum_b m_b dphi(r_ab, h_a)/dh_a   (b = a included),
+// is added by the MHD pair loop, as an isotropic stress -(G/2) zeta/Omega (pair_loop_arrays,
+// spmhd_forces.cpp); zeta is summed in the density solve, over its candidates at the solved h
+// (spmhd_density.cpp). Each particle writes only its own acceleration: results independent of
+// the thread count.
 //
 // The tree and every sum of the solvers depend on the order of their input, and the slots' order
 // depends on when the lists were last built (the call history). So the solvers see the sources in
@@ -62,29 +63,11 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
       sources.wanted = gravity_wanted_.data();
     }
     potential_energy_ = gravity_->compute(sources, gravity_acc_.data(), gravity_potential_.data());
-    const Real* x = x_.data();
-    const MinimumImage<3> image(ns_.box());
-    kernel_scale_.resize(n_);  // each particle's f_over_r_scale, once instead of once per pair
-    for (std::size_t a = 0; a < n_; ++a) kernel_scale_[a] = K::f_over_r_scale(h_[a]);
     Real* dv_dt = ydot + layout_.offset(Field::Velocity);
-    const Real G = opt_.G;
     const std::size_t rows = only ? only->size() : n_;
-#pragma omp parallel for schedule(dynamic, 64)
     for (std::size_t i = 0; i < rows; ++i) {
-      const std::size_t a = only ? (*only)[i] : i;
-      const Real ha = h_[a];
-      Vec<3> acc = Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * perm_[a]);
-      thread_local std::vector<std::uint32_t> near;  // the row's entries that may be within reach
-      const std::size_t n_near = entries_within_reach(a, image, near);
-      for (std::size_t e = 0; e < n_near; ++e) {  // in list order, as before the filter
-        const std::size_t b = near[e];
-        const Vec<3> x_ab = image(x + 3 * a, x + 3 * b);
-        const Real r = x_ab.norm(), reach = K::support * std::max(ha, h_[b]);
-        if (r >= reach || r == 0) continue;
-        acc += grad_h_gravity_pair<K>(G, ms_[b], x_ab, r, ha, h_[b], zeta_over_omega_[a], zeta_over_omega_[b],
-                                      kernel_scale_[a], kernel_scale_[b]);
-      }
-      Eigen::Map<Vec<3>>(dv_dt + 3 * perm_[a]) += acc;
+      const std::size_t p = perm_[only ? (*only)[i] : i];
+      Eigen::Map<Vec<3>>(dv_dt + 3 * p) += Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * p);
     }
     ++version_;  // the potentials changed (particle-order caches)
   }

@@ -40,6 +40,12 @@ struct SpmhdOptions {
   Real eta = 1.2;               // h = eta (m/rho)^(1/D), seed 000 eq. (5)
   Real h_tolerance = 1e-10;     // relative Newton tolerance on h
   Real h_initial = 0;           // first guess for h (0: from the bounding box and N)
+  // The largest h (SWIFT's SPH:h_max): a particle whose root of (4)-(5) lies beyond takes h_max,
+  // its density the sum (4) there and Omega = 1 (its h then does not depend on rho; the grad-h
+  // terms vanish, the pair forces stay antisymmetric). 0: in a periodic box half the shortest
+  // period / (1.5 support) (room for a list skin of 0.5 in the minimum image), none otherwise;
+  // +inf: none (a support beyond half the box is then an error).
+  Real h_max = 0;
 
   bool evolve_particles = true; // false: the cleaning subsystem only (fixed particles, state B, psi)
   FieldRepresentation field = FieldRepresentation::MagneticField;

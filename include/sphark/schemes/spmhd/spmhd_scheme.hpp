@@ -137,6 +137,10 @@ class SpmhdScheme final : public OdeSystem {
   // Density / h solves so far, one per particle solved (not counting attempts retried with longer
   // lists; subset evaluations solve fewer than N).
   long density_solves() const { return density_solves_; }
+  // The largest h a particle may take (SpmhdOptions::h_max; +inf: none), and how many particles
+  // sit there at the last solve (their root of (4)-(5) lies beyond).
+  Real h_cap() const;
+  std::size_t smoothing_lengths_at_cap() const;
   // Sum of interacting_pairs() over all RHS evaluations so far.
   double pair_interactions_total() const { return pairs_total_; }
 
@@ -210,7 +214,7 @@ class SpmhdScheme final : public OdeSystem {
   // lists for list_h_ (grow_only: no list shorter than the last build's), then slots in cell order
   int build_neighbours(const Real* x, bool grow_only = false);
   struct DensityStats {
-    std::size_t not_converged = 0, outside_list = 0, iterations = 0;
+    std::size_t not_converged = 0, outside_list = 0, iterations = 0, capped = 0;
     Real h_max = 0;
   };
   // the slots `only` (all when null); h_[i] <= list_h_served_[i]; sets list_h_needed_
@@ -333,7 +337,6 @@ class SpmhdScheme final : public OdeSystem {
   std::unique_ptr<SelfGravity> gravity_;
   std::vector<Real> gravity_x_, gravity_h_, gravity_acc_, gravity_potential_, zeta_over_omega_;
   std::vector<std::uint8_t> gravity_wanted_;  // the tree's targets of a subset
-  std::vector<Real> kernel_scale_;  // K::f_over_r_scale(h) per slot (gravity_pass)
   std::size_t entries_within_reach(std::size_t a, const MinimumImage<D>& image, std::vector<std::uint32_t>& near) const;
   GravitySources gravity_sources() const { return {gravity_x_.data(), m_.data(), gravity_h_.data(), n_}; }
   SinkGasGravity<K> sink_gas_;          // sink-gas gravity (opt_.sink_particles)
