@@ -138,15 +138,22 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
   for (std::size_t i : active) {
     if (i >= n_) continue;  // a sink: below
     const std::size_t a = slot_of_[i];
-    active_steps_.push_back(std::min(own_of_slot_[a], kNeighbourStepFactor * least_neighbour_step(a, image)));
+    // One pass over a's list for both directions of the limiter: the least own step among its
+    // neighbours (least_neighbour_step's) and its bound on each of them; a distance only where
+    // either can change.
     const Real cap = kNeighbourStepFactor * own_of_slot_[a];
-    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {  // the bound on each neighbour
+    Real least = std::numeric_limits<Real>::infinity();
+    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
       const std::size_t b = L.indices[k];
       Real& dt_b = dt[perm_[b]];
-      if (!(cap < dt_b)) continue;
+      const bool lowers_least = own_of_slot_[b] < least, bounds_b = cap < dt_b;
+      if (!(lowers_least || bounds_b)) continue;
       const Real reach = K::support * std::max(h_[a], h_[b]);
-      if (image(x + D * a, x + D * b).squaredNorm() < reach * reach) dt_b = cap;
+      if (!(image(x + D * a, x + D * b).squaredNorm() < reach * reach)) continue;
+      if (lowers_least) least = own_of_slot_[b];
+      if (bounds_b) dt_b = cap;
     }
+    active_steps_.push_back(std::min(own_of_slot_[a], kNeighbourStepFactor * least));
   }
   // The particles whose density this event solved (the active ones' neighbourhoods; with
   // SubsetDensity::Predicted the active ones only): their own steps are current, and bound them
