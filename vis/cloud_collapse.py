@@ -67,7 +67,7 @@ def column_density_figure(found, out):
             for ax in axes[row]:
                 ax.axis("off")
             axes[row][0].text(0.0, 0.5, f"{label}: no column density map -- the run ended at "
-                              f"t = {table['t_over_tff'][-1]:.4f} t_ff\n(a failed run writes none; "
+                              f"t = {table['t_over_tff'][-1]:.4f} t_ff\n(a failed or stopped run writes none; "
                               "its last frame and checkpoint are in its folder)", fontsize=10,
                               transform=axes[row][0].transAxes, va="center")
             continue
