@@ -8,7 +8,9 @@
 //    particles' grad-h term, zeta, is zero);
 //  - in a periodic box the default cap keeps the support within the minimum image: eight
 //    particles in a unit box (their roots of (5) would reach across it) get h = 1 / (2 1.5 support)
-//    and no neighbour, where the evaluation used to fail; an open box has no cap.
+//    and no neighbour, where the evaluation used to fail; an open box has no cap;
+//  - a first guess 100x below the roots (as a restart's h of a particle that has since crossed
+//    the box) reaches them: the lists grow 1.5x per attempt, 4x from the fifth.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -164,6 +166,18 @@ TEST(SmoothingLengthCap, APeriodicBoxCapsTheSupportWithinItsMinimumImage) {
     EXPECT_EQ(s.h()[a], cap);
     EXPECT_NEAR(s.rho()[a], s.masses()[a] * K::w(0, cap), 1e-15 * s.rho()[a]);  // the self term alone
   }
+}
+
+TEST(SmoothingLengthCap, AGuessFarBelowTheRootsReachesThem) {
+  SpmhdOptions o = test::conserving_options();
+  const LatticeRhs from_box(o);  // the first guess from the bounding box: near the roots
+  const std::vector<Real> roots = from_box.s.h();
+  const Real least = *std::min_element(roots.begin(), roots.end());
+  o.h_initial = least / 100;  // 1.5^8 = 26x would not reach: the 4x steps must
+  const LatticeRhs from_far(o);
+  ASSERT_EQ(from_far.s.h().size(), roots.size());
+  for (std::size_t a = 0; a < roots.size(); ++a) EXPECT_NEAR(from_far.s.h()[a], roots[a], 1e-12 * roots[a]) << a;
+  EXPECT_EQ(from_far.s.smoothing_lengths_at_cap(), 0u);
 }
 
 }  // namespace

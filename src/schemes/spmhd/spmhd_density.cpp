@@ -105,6 +105,14 @@ void SpmhdScheme<D, K>::slots_to_solve() {
 // serves every h_i <= cap_i = (R_i - 2 disp) / support; a pair of the force loop (closer than
 // support * max(h_a, h_b)) is listed when both h are within their caps. Rebuild when some h
 // (the guess: the predicted h) exceeds its cap, or when the density solve reports an h beyond.
+// A list too short for its h grows by 1.5x per attempt of one solve, by 4x from the fifth: a
+// guess far from its root (a restart's h of a particle that has since crossed the box, a poor
+// first guess) reaches it within the eight attempts (1.5^4 4^3 = 324x), the cap included.
+template <int D, class K>
+Real SpmhdScheme<D, K>::list_growth_for_attempt(int attempt) {
+  return attempt < 4 ? 1.5 : 4.0;
+}
+
 template <int D, class K>
 int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
   if (h_unset_) first_smoothing_lengths(x, true);
@@ -132,6 +140,7 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
       }
     }
     ScopedPhase timer(Phase::DensityH);
+    list_growth_ = list_growth_for_attempt(attempt);
     slots_to_solve();  // (after a build: the new slots)
     const bool all = solve_slots_.size() == n_;
     const DensityStats st = solve_density(x, all ? nullptr : &solve_slots_);
@@ -252,7 +261,7 @@ typename SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const 
       if (root_beyond_list<D>(density_at, hh, h_list, m_eta, tol)) {
         if (h_list < cap) {
           ++outside;
-          list_h_needed_[i] = std::min(1.5 * h_list, cap);
+          list_h_needed_[i] = std::min(list_growth_ * h_list, cap);
         } else {  // SpmhdOptions::h_max: the sum (4) at the cap, h independent of rho there
           ++capped;
           Real drho_dh = 0;
@@ -334,6 +343,7 @@ void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
 #define SPHARK_SPMHD_DENSITY(D, K)                                                              \
   template void SpmhdScheme<D, K>::first_smoothing_lengths(const Real*, bool);                  \
   template Real SpmhdScheme<D, K>::h_cap() const;                                               \
+  template Real SpmhdScheme<D, K>::list_growth_for_attempt(int);                                \
   template std::size_t SpmhdScheme<D, K>::smoothing_lengths_at_cap() const;                     \
   template int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real, const Real*); \
   template void SpmhdScheme<D, K>::predict_smoothing_lengths(Real);                  \

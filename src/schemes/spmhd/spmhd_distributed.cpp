@@ -230,6 +230,7 @@ int SpmhdScheme<D, K>::distributed_density_attempt(Real t, const Real* y, int at
     }
     if (code == 0 && solve) {
       ScopedPhase density(Phase::DensityH);
+      list_growth_ = list_growth_for_attempt(attempt);
       st = solve_density(x_.data());
     }
     if (code != 0) message = error_;

@@ -207,6 +207,7 @@ class SpmhdScheme final : public OdeSystem {
   // 0, or 1 (recoverable, error_ says why) when h cannot be solved or outgrows the box.
   int ensure_neighbours_and_density(Real t, const Real* x);  // src/schemes/spmhd/spmhd_density.cpp
   void predict_smoothing_lengths(Real t);  // the solve's initial guesses at t (spmhd_density.cpp)
+  static Real list_growth_for_attempt(int attempt);  // spmhd_density.cpp
   Real half_period() const;  // half the shortest periodic side of the box (+inf: none)
   void slots_to_solve();  // solve_slots_: the slots prepare() must solve, of those it serves
   void densities_of_predicted_h();  // SubsetDensity::Predicted: rho of the unsolved slots from their h
@@ -329,6 +330,8 @@ class SpmhdScheme final : public OdeSystem {
   std::size_t interacting_pairs_ = 0;
   double pairs_total_ = 0, h_iterations_ = 0;
   long density_solves_ = 0;
+  // How far a list grows for an h beyond it, per attempt of a solve (list_growth_for_attempt).
+  Real list_growth_ = 1.5;
   Real cleaning_speed_ = 0;         // global c_h (the largest c_h,a with local_ch)
   // Self-gravity (opt_.self_gravity): the solver; its sources' positions and h, accelerations
   // (D x n) and potentials in particle order (spmhd_gravity.cpp says why); zeta_a / Omega_a of
