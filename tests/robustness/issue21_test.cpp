@@ -158,16 +158,21 @@ TEST(Issue21, IntervalDefaultsFollowTheRun) {
                  "--checkpoint-every: 1e-300 gives more than 1e+06 outputs");
 }
 
-// The first line of every run: particles, memory, steps and time before it starts.
-TEST(Issue21, EveryRunSaysWhatItWillCostOnItsFirstLine) {
+// The first line a run of `program` with `args` (and --no-render --out <temp>) writes; the run
+// must succeed.
+static std::string first_line_of_run(const std::string& program, std::vector<std::string> args, int timeout_s) {
   TempDir dir;
-  const Timed r = run_timed(require_example("orszag_tang"),
-                            {"--nx", "16", "--t-end", "0.02", "--variant", "cleaning", "--no-render", "--out",
-                             (dir.path() / "o").string()},
-                            dir.path(), 60);
-  ASSERT_EQ(r.f.exit_code, 0) << r.f.err;
+  args.insert(args.end(), {"--no-render", "--out", (dir.path() / "o").string()});
+  const Timed r = run_timed(require_example(program), args, dir.path(), timeout_s);
+  EXPECT_EQ(r.f.exit_code, 0) << r.f.err;
   const std::string first = r.f.err.substr(0, r.f.err.find('\n'));
   std::printf("%s\n", first.c_str());
+  return first;
+}
+
+// The first line of every run: particles, memory, steps and time before it starts.
+TEST(Issue21, EveryRunSaysWhatItWillCostOnItsFirstLine) {
+  const std::string first = first_line_of_run("orszag_tang", {"--nx", "16", "--t-end", "0.02", "--variant", "cleaning"}, 60);
   EXPECT_EQ(first.rfind("orszag_tang: cleaning run: predicted 288 particles, ", 0), 0u) << first;
   EXPECT_TRUE(contains(first, " available, ")) << first;
   EXPECT_TRUE(contains(first, " steps (first dt ")) << first;
@@ -178,14 +183,8 @@ TEST(Issue21, EveryRunSaysWhatItWillCostOnItsFirstLine) {
 // A collapse's step falls by orders of magnitude to the sink (SceneRun::stable_step_falls): the
 // steps and time counted from its first step are lower bounds, and say so.
 TEST(Issue21, ACollapseCallsItsStepsAndTimeLowerBounds) {
-  TempDir dir;
-  const Timed r = run_timed(require_example("cloud_collapse"),
-                            {"--particles", "1000", "--t-end", "0.02", "--threads", "1", "--no-render", "--out",
-                             (dir.path() / "o").string()},
-                            dir.path(), 120);
-  ASSERT_EQ(r.f.exit_code, 0) << r.f.err;
-  const std::string first = r.f.err.substr(0, r.f.err.find('\n'));
-  std::printf("%s\n", first.c_str());
+  const std::string first =
+      first_line_of_run("cloud_collapse", {"--particles", "1000", "--t-end", "0.02", "--threads", "1"}, 120);
   EXPECT_TRUE(contains(first, ", >= ")) << first;
   EXPECT_TRUE(contains(first, " steps (first dt ")) << first;
   EXPECT_TRUE(contains(first, "), >= ")) << first;  // the time too
