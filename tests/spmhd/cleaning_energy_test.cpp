@@ -165,6 +165,70 @@ TEST(SpmhdCleaning, LocalCleaningSpeedConservesEnergyToRoundOff) {
   EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;
 }
 
+// c_h,a spread over k kernel supports (SpmhdOptions::ch_spread): k passes of c_a <- the largest
+// c_b with |x_ab| < support max(h_a, h_b), against a brute-force pass over every pair of the
+// particles' own speeds, exactly; the energy still conserved to round-off (c_h,a is only a
+// coefficient of a's terms in Tricco, Price & Bate's form).
+SpmhdOptions spread_options(int hops) {
+  SpmhdOptions o = DiscCase::options(Cleaning::Constrained, 0.0, 2.0);
+  o.fixed_ch = 0;
+  o.local_ch = true;
+  o.ch_spread = hops;
+  return o;
+}
+
+std::vector<Real> spread_by_every_pair(std::vector<Real> c, const SpmhdScheme<2>& s, int passes) {
+  const std::vector<Real>& h = s.h();
+  const std::vector<Real> x = s.positions();
+  for (int pass = 0; pass < passes; ++pass) {
+    std::vector<Real> next = c;
+    for (std::size_t a = 0; a < c.size(); ++a)
+      for (std::size_t b = 0; b < c.size(); ++b) {
+        const Real reach = CubicSpline<2>::support * std::max(h[a], h[b]);
+        if ((Eigen::Map<const Vec<2>>(&x[2 * a]) - Eigen::Map<const Vec<2>>(&x[2 * b])).squaredNorm() < reach * reach)
+          next[a] = std::max(next[a], c[b]);
+      }
+    c = next;
+  }
+  return c;
+}
+
+TEST(SpmhdCleaning, SpreadCleaningSpeedIsTheLargestWithinItsSupportsAndConservesEnergy) {
+  DiscCase own(spread_options(0)), spread(spread_options(2));
+  const std::vector<Real> expected = spread_by_every_pair(own.scheme.cleaning_speeds(), own.scheme, 2);
+  const std::vector<Real>& ch = spread.scheme.cleaning_speeds();
+  std::size_t raised = 0;
+  for (std::size_t a = 0; a < ch.size(); ++a) {
+    ASSERT_EQ(ch[a], expected[a]) << "particle " << a;
+    raised += ch[a] > own.scheme.cleaning_speeds()[a];
+  }
+  EXPECT_GT(raised, ch.size() / 10);  // the field varies: many are raised, ...
+  EXPECT_LT(raised, ch.size());       // ... the largest is not
+  const EnergyRate e = spread.energy_rate();
+  ASSERT_GT(e.scale, 0);
+  EXPECT_LT(std::abs(e.rate), 1e-14 * e.scale) << "dE/dt = " << e.rate << ", scale " << e.scale;
+  SpmhdOptions global = spread_options(2);
+  global.local_ch = false;  // a spread of the one global c_h means nothing: refused
+  EXPECT_THROW(DiscCase{global}, std::invalid_argument);
+}
+
+// A subset evaluation computes the spread only near its rows (the active particles' neighbours
+// and ch_spread hops beyond): its derivatives are the full evaluation's bit for bit.
+TEST(SpmhdCleaning, ASubsetsSpreadCleaningSpeedsAreTheFullEvaluationsBitForBit) {
+  DiscCase c(spread_options(3));
+  const std::vector<std::size_t> active = {100, 988, 1500};
+  std::vector<Real> f(c.y.size(), 7.0);
+  ASSERT_EQ(c.scheme.rhs_subset(0, c.y.data(), active, f.data()), 0) << c.scheme.last_error();
+  const std::vector<std::size_t> owner = c.scheme.entry_particles();
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < f.size(); ++k)
+    if (std::find(active.begin(), active.end(), owner[k]) != active.end()) {
+      ASSERT_EQ(f[k], c.ydot[k]) << "entry " << k << " (particle " << owner[k] << ")";
+      ++compared;
+    }
+  EXPECT_EQ(compared, 3u * 4u);  // B (3) and psi of each
+}
+
 TEST(SpmhdCleaning, OvercleanBelowOneIsRejected) {
   const ParticleSet2D p = disc_square_lattice(1.0, 0.04, 1.0);
   SpmhdOptions o = DiscCase::options(Cleaning::Constrained, 0.3, 0.5);

@@ -59,6 +59,7 @@ SpmhdOptions cloud_collapse_options(const CloudCollapseParams& p, const CloudNum
     o.sigma = p.sigma;
     o.overclean = p.overclean;
     o.local_ch = p.local_ch;
+    o.ch_spread = p.ch_spread;
   }
   if (p.variant == "cleaning+resistivity") o.alpha_b = p.alpha_b;
   o.courant = p.courant;

@@ -51,6 +51,8 @@ void CloudCollapseScene::add_options(OptionParser& p) {
   p.add("--sigma", &params_.sigma, "cleaning damping, 1/tau = sigma c_h / h", Range{0, 10});
   p.add("--overclean", &params_.overclean, "c_h = overclean x fast speed", Range{1, 100});
   p.add_flag("--local-ch", &local_ch_, "each particle's own c_h (its fast speed) instead of one global c_h");
+  p.add("--ch-spread", &params_.ch_spread,
+        "--local-ch: each particle's c_h the largest within this many kernel supports (0: its own)", Range{0, 16});
   p.add("--step-floor", &params_.step_floor_tff, "the run fails (exit 3) when its steps stay below this [t_ff]",
         Range{1e-12, 1e-2});
   p.add_flag("--no-tensile-correction", &no_tensile_correction_, "leave out the correction (9) of the Maxwell stress");
@@ -89,6 +91,7 @@ void CloudCollapseScene::check_options(const OptionParser& p, CoreOptions& core,
   params_.subset_density = parse_subset_density(subset_density_);
   if (!p.was_given("--theta")) params_.theta = default_theta(params_.opening);
   params_.local_ch = local_ch_;
+  if (params_.ch_spread > 0 && !params_.local_ch) p.fail("--ch-spread", "spreads each particle's own c_h: give --local-ch too");
   params_.tensile_correction = !no_tensile_correction_;
   try {
     free_fall_time_ = cloud_numbers(params_).free_fall_time;
@@ -130,6 +133,7 @@ std::string CloudCollapseScene::scene_text(const std::string& run) const {
   append_key_value(text, "sigma", params_.sigma);
   append_key_value(text, "overclean", params_.overclean);
   append_key_value(text, "local_ch", params_.local_ch ? 1.0 : 0.0);
+  if (params_.ch_spread > 0) append_key_value(text, "ch_spread", params_.ch_spread);
   append_key_value(text, "tensile_correction", params_.tensile_correction ? 1.0 : 0.0);
   append_key_value(text, "courant", params_.courant);
   if (params_.cleaning_courant > 0) append_key_value(text, "cleaning_courant", params_.cleaning_courant);

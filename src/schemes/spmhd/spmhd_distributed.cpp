@@ -33,6 +33,8 @@ void SpmhdScheme<D, K>::distribute(Communicator comm, const std::vector<std::int
   if (opt_.field != FieldRepresentation::MagneticField || opt_.self_gravity || opt_.sink_particles)
     throw std::invalid_argument(
         "SpmhdScheme::distribute: the magnetic field only (no Euler potentials, self-gravity or sinks distributed yet)");
+  if (opt_.ch_spread > 0)  // (a halo particle's spread c_h would need the halo's own neighbours)
+    throw std::invalid_argument("SpmhdScheme::distribute: ch_spread is not distributed yet");
   if (!opt_.evolve_particles) all_fixed_x_ = positions();  // every particle's, particle order
   std::vector<Real> masses(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {

@@ -68,6 +68,9 @@ SpmhdScheme<D, K>::SpmhdScheme(std::vector<Real> masses, SpmhdOptions opt, std::
   if (!(opt_.eta > 0)) throw std::invalid_argument("SpmhdScheme: eta must be > 0");
   if (opt_.sigma < 0) throw std::invalid_argument("SpmhdScheme: sigma must be >= 0");
   if (!(opt_.overclean >= 1)) throw std::invalid_argument("SpmhdScheme: overclean must be >= 1");
+  if (opt_.ch_spread < 0 || opt_.ch_spread > 16) throw std::invalid_argument("SpmhdScheme: ch_spread must be in [0, 16]");
+  if (opt_.ch_spread > 0 && !opt_.local_ch)
+    throw std::invalid_argument("SpmhdScheme: ch_spread spreads each particle's own c_h: it needs local_ch");
   if (!(opt_.cleaning_courant >= 0 && std::isfinite(opt_.cleaning_courant)))
     throw std::invalid_argument("SpmhdScheme: cleaning_courant must be finite and >= 0 (0: the Courant number)");
   if (opt_.evolve_particles) {
@@ -260,14 +263,6 @@ Real SpmhdScheme<D, K>::equation_of_state(std::size_t begin, std::size_t end) {
   return cmax;
 }
 
-// c_h of slots [begin, end): the global one, or each particle's own (local_ch).
-template <int D, class K>
-void SpmhdScheme<D, K>::set_cleaning_speeds(std::size_t begin, std::size_t end) {
-  for (std::size_t a = begin; a < end; ++a)
-    cleaning_speeds_[a] =
-        opt_.local_ch ? opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : fast_speed_[a]) : cleaning_speed_;
-}
-
 template <int D, class K>
 int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
   ++version_;
@@ -322,6 +317,7 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
   }
   cleaning_speed_ = opt_.overclean * (opt_.fixed_ch > 0 ? opt_.fixed_ch : cmax);
   set_cleaning_speeds(0, n_);
+  spread_cleaning_speeds();
   if (!std::isfinite(cleaning_speed_)) {
     error_ = "non-finite wave speed";
     return 1;

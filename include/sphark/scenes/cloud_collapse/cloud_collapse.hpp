@@ -61,6 +61,7 @@ struct CloudCollapseParams {
   // one global c_h (the largest fast speed); true: each particle's (Tricco, Price & Bate 2016),
   // state psi / c_h — measured worse here (docs/cloud_collapse.md)
   bool local_ch = false;
+  int ch_spread = 0;                  // local_ch: each c_h the largest within this many supports (SpmhdOptions)
   bool tensile_correction = true;     // seed 000, eq. (9)
   Real tensile_exclusion = 0;         // eq. (9) left out within this many r_acc of a sink (0: nowhere)
   Real tensile_beta_none = 0;         // eq. (9) whole below beta 2, none above this (Phantom's switch; 0: every beta)

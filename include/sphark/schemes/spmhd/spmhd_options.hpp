@@ -57,6 +57,11 @@ struct SpmhdOptions {
                                 // time step C h / max(c_h, v_sig) use this c_h.
   bool local_ch = false;        // per-particle c_h,a = overclean x fast speed of a, with the state holding
                                 // psi / c_h (Tricco, Price & Bate 2016); false: one global c_h
+  // local_ch: c_h,a = overclean x the largest fast speed within ch_spread kernel supports of a
+  // (hops of |x_ab| < support max(h_a, h_b)); 0: a's own. The induction's -grad(c_h psi/c_h) has a
+  // part (psi/c_h) grad c_h that makes div B where c_h jumps (a cloud's surface, the sound speed
+  // x sqrt(30)); spread over two supports the jump no longer does (docs/cloud_collapse.md).
+  int ch_spread = 0;
 
   bool subtract_monopole_force = true;  // seed 000, eq. (9)
   // eq. (9) left out for gas closer than this to a sink (0: applied everywhere): next to an

@@ -265,7 +265,10 @@ class SpmhdScheme final : public OdeSystem {
   bool halo_density_stale_ = false;                            // a solve since the last exchange
   std::vector<Real> local_density_;                            // h, rho, Omega per particle (exchange)
   Real equation_of_state(std::size_t begin, std::size_t end);  // P, c, c_f of slots; the largest c_f
-  void set_cleaning_speeds(std::size_t begin, std::size_t end);
+  void set_cleaning_speeds(std::size_t begin, std::size_t end);  // spmhd_cleaning_speeds.cpp
+  void spread_cleaning_speeds();                                  // SpmhdOptions::ch_spread
+  std::vector<std::uint8_t> spread_hops_;                         // its scratch: hops from a read slot
+  std::vector<Real> spread_next_;
   const std::uint32_t* slot_keys() const;                      // rows' sort keys: global ids per slot
   const Real* particle_positions(const Real* y) const;         // this rank's, particle order (state or fixed)
   std::vector<Real> all_fixed_x_, fixed_x_;                    // distributed fixed particles: every one's, this rank's
