@@ -27,10 +27,11 @@ namespace sphark {
 
 // Slot a's neighbours b (list order) that can be within support * max(h_a, h_b): a branch-free
 // pass over the row (about half of a row lies beyond, in no predictable pattern), so that the
-// pair loop after it rarely branches. Keeps every b with |x_ab| < reach, and a few just beyond.
+// pair loop after it rarely branches. Keeps every b with |x_ab|^2 < reach^2 (1 + slack): with
+// slack 0 exactly those, with a little a few just beyond (for a loop that checks again).
 template <int D, class K>
 std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t a, const MinimumImage<D>& image,
-                                                    std::vector<std::uint32_t>& near) const {
+                                                    std::vector<std::uint32_t>& near, Real slack) const {
   const NeighbourList& L = ns_.list();
   const std::size_t begin = L.begin(a), count = L.count(a);
   if (near.size() < count) near.resize(count + count / 4);
@@ -40,7 +41,7 @@ std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t a, const Minimum
     const std::uint32_t b = L.indices[begin + k];
     const Real reach = K::support * std::max(h_[a], h_[b]);
     near[n] = b;
-    n += image(x + D * a, x + D * b).squaredNorm() < reach * reach * (1 + 1e-12);
+    n += image(x + D * a, x + D * b).squaredNorm() < reach * reach * (1 + slack);
   }
   return n;
 }
@@ -89,7 +90,7 @@ Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
 
 #define SPHARK_SPMHD_GRAVITY(D, K)                          \
   template std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t, const MinimumImage<D>&,            \
-                                                                std::vector<std::uint32_t>&) const;            \
+                                                                std::vector<std::uint32_t>&, Real) const;      \
   template void SpmhdScheme<D, K>::gravity_pass(Real*, const std::vector<std::uint32_t>*); \
   template Real SpmhdScheme<D, K>::force_time_step(const Real*) const; \
   template Real SpmhdScheme<D, K>::force_step(std::size_t, const Real*) const;

@@ -131,27 +131,21 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
   std::fill(dt, dt + num_particles(), inf);
   slot_of_.resize(n_);
   for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
-  const NeighbourList& L = ns_.list();
   const MinimumImage<D> image(ns_.box());
-  const Real* x = x_.data();
   active_steps_.clear();
   for (std::size_t i : active) {
     if (i >= n_) continue;  // a sink: below
     const std::size_t a = slot_of_[i];
-    // One pass over a's list for both directions of the limiter: the least own step among its
-    // neighbours (least_neighbour_step's) and its bound on each of them; a distance only where
-    // either can change.
+    // Both directions of the limiter over a's neighbours within reach (a branch-free distance
+    // pass first): the least own step among them (least_neighbour_step's), its bound on each.
+    const std::size_t n_near = entries_within_reach(a, image, limiter_near_, 0);
     const Real cap = kNeighbourStepFactor * own_of_slot_[a];
     Real least = std::numeric_limits<Real>::infinity();
-    for (std::size_t k = L.begin(a); k < L.end(a); ++k) {
-      const std::size_t b = L.indices[k];
+    for (std::size_t k = 0; k < n_near; ++k) {
+      const std::size_t b = limiter_near_[k];
+      least = std::min(least, own_of_slot_[b]);
       Real& dt_b = dt[perm_[b]];
-      const bool lowers_least = own_of_slot_[b] < least, bounds_b = cap < dt_b;
-      if (!(lowers_least || bounds_b)) continue;
-      const Real reach = K::support * std::max(h_[a], h_[b]);
-      if (!(image(x + D * a, x + D * b).squaredNorm() < reach * reach)) continue;
-      if (lowers_least) least = own_of_slot_[b];
-      if (bounds_b) dt_b = cap;
+      dt_b = std::min(dt_b, cap);
     }
     active_steps_.push_back(std::min(own_of_slot_[a], kNeighbourStepFactor * least));
   }

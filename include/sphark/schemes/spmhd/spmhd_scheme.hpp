@@ -312,6 +312,7 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<std::uint32_t> slot_of_;         // rhs_subset: particle -> slot
   std::vector<Real> courant_steps_, force_steps_;  // particle_stable_dt
   std::vector<Real> own_of_slot_, active_steps_;   // active_stable_dt
+  std::vector<std::uint32_t> limiter_near_;        // its neighbours within reach of one active row
   int own_steps_by_slot(Real t, const Real* y, const Real* ydot);
   Real least_neighbour_step(std::size_t a, const MinimumImage<D>& image) const;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
@@ -343,7 +344,8 @@ class SpmhdScheme final : public OdeSystem {
   std::unique_ptr<SelfGravity> gravity_;
   std::vector<Real> gravity_x_, gravity_h_, gravity_acc_, gravity_potential_, zeta_over_omega_;
   std::vector<std::uint8_t> gravity_wanted_;  // the tree's targets of a subset
-  std::size_t entries_within_reach(std::size_t a, const MinimumImage<D>& image, std::vector<std::uint32_t>& near) const;
+  std::size_t entries_within_reach(std::size_t a, const MinimumImage<D>& image, std::vector<std::uint32_t>& near,
+                                   Real slack = 1e-12) const;
   GravitySources gravity_sources() const { return {gravity_x_.data(), m_.data(), gravity_h_.data(), n_}; }
   SinkGasGravity<K> sink_gas_;          // sink-gas gravity (opt_.sink_particles)
   std::vector<Real> sink_acc_, gas_from_sinks_, sink_potential_;
