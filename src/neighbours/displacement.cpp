@@ -19,6 +19,26 @@ Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::
   return std::sqrt(m2);
 }
 
+template <int D>
+void displacements(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box,
+                   std::vector<Real>& out, const std::uint32_t* order) {
+  out.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t p = order ? order[i] : i;
+    Vec<D> d = Eigen::Map<const Vec<D>>(x + D * p) - Eigen::Map<const Vec<D>>(ref + D * i);
+    if (box) d = box->minimum_image(d);
+    out[i] = d.norm();
+  }
+}
+
+template void displacements<1>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<1>>&,
+                               std::vector<Real>&, const std::uint32_t*);
+template void displacements<2>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<2>>&,
+                               std::vector<Real>&, const std::uint32_t*);
+template void displacements<3>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<3>>&,
+                               std::vector<Real>&, const std::uint32_t*);
+
 template Real max_displacement<1>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<1>>&,
                                   const std::uint32_t*);
 template Real max_displacement<2>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<2>>&,

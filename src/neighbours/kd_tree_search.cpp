@@ -317,6 +317,11 @@ Real KdTreeNeighbourSearch<D>::max_displacement_since_build(const Real* x) const
   return max_displacement<D>(x, ppts_.data(), n_, box_);
 }
 
+template <int D>
+void KdTreeNeighbourSearch<D>::displacements_since_build(const Real* x, std::vector<Real>& out) const {
+  displacements<D>(x, ppts_.data(), n_, box_, out);
+}
+
 template class KdTreeNeighbourSearch<1>;
 template class KdTreeNeighbourSearch<2>;
 template class KdTreeNeighbourSearch<3>;

@@ -344,6 +344,11 @@ Real NeighbourSearch<D>::max_displacement_since_build(const Real* x, const std::
   return max_displacement<D>(x, points_.data(), n_, box_, order);
 }
 
+template <int D>
+void NeighbourSearch<D>::displacements_since_build(const Real* x, std::vector<Real>& out) const {
+  displacements<D>(x, points_.data(), n_, box_, out);
+}
+
 template class NeighbourSearch<1>;
 template class NeighbourSearch<2>;
 template class NeighbourSearch<3>;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "sphark/core/types.hpp"
 #include "sphark/neighbours/periodic_box.hpp"
@@ -15,5 +16,10 @@ namespace sphark {
 template <int D>
 Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box,
                       const std::uint32_t* order = nullptr);
+
+// out[i] = |x_i - ref_i| for each of the n particles (as max_displacement, order likewise).
+template <int D>
+void displacements(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box,
+                   std::vector<Real>& out, const std::uint32_t* order = nullptr);
 
 }  // namespace sphark

@@ -55,6 +55,7 @@ class KdTreeNeighbourSearch {
     return box_ ? box_->minimum_image(d) : d;
   }
   Real max_displacement_since_build(const Real* x) const;
+  void displacements_since_build(const Real* x, std::vector<Real>& out) const;  // per particle
   long allocations() const { return allocations_; }
   std::size_t nodes() const { return node_.size(); }
 

@@ -91,6 +91,12 @@ class AdaptiveNeighbourSearch {
   Real max_displacement_since_build(const Real* x) const {
     return grid() ? grid_.max_displacement_since_build(x) : tree_.max_displacement_since_build(x);
   }
+  void displacements_since_build(const Real* x, std::vector<Real>& out) const {
+    if (grid())
+      grid_.displacements_since_build(x, out);
+    else
+      tree_.displacements_since_build(x, out);
+  }
   long allocations() const { return grid_.allocations() + tree_.allocations(); }
   NeighbourMethod method() const { return method_; }
 

@@ -117,6 +117,7 @@ class NeighbourSearch {
   // Largest |x_i - x_i(at build)| (minimum image), for the Verlet-skin validity check; with
   // `order`, x_i is particle order[i] of x (x in the order before renumber(order)).
   Real max_displacement_since_build(const Real* x, const std::uint32_t* order = nullptr) const;
+  void displacements_since_build(const Real* x, std::vector<Real>& out) const;  // per particle
 
   // Builds so far that had to enlarge a buffer (the others allocated nothing).
   long allocations() const { return allocations_; }

@@ -101,10 +101,11 @@ void SpmhdScheme<D, K>::slots_to_solve() {
 
 // Verlet lists with per-particle radii R_i (spmhd_lists.cpp: support * [list_h_i (1 + f skin) +
 // (1 - f) skin min list_h], cut at half a periodic box). A pair closer than
-// support * h_i now was closer than support * h_i + 2 disp at the build, so particle i's list
-// serves every h_i <= cap_i = (R_i - 2 disp) / support; a pair of the force loop (closer than
-// support * max(h_a, h_b)) is listed when both h are within their caps. Rebuild when some h
-// (the guess: the predicted h) exceeds its cap, or when the density solve reports an h beyond.
+// support * h_i now was closer than support * h_i + d_i + d_j at the build (d: displacements
+// since), so particle i's list serves every h_i <= cap_i = (R_i - d_i - d_max) / support; a pair
+// of the force loop (closer than support * max(h_a, h_b)) is listed when both h are within their
+// caps (with a few fast movers set apart and checked pair by pair: lists_serve). Rebuild when
+// some h (the guess: the predicted h) exceeds its cap, or when the density solve reports an h beyond.
 // A list too short for its h grows by 1.5x per attempt of one solve, by 4x from the fifth: a
 // guess far from its root (a restart's h of a particle that has since crossed the box, a poor
 // first guess) reaches it within the eight attempts (1.5^4 4^3 = 324x), the cap included.
@@ -122,17 +123,7 @@ int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
     if (attempt > 0) std::copy(h_guess_.begin(), h_guess_.end(), h_.begin());
     {
       ScopedPhase timer(Phase::Neighbours);
-      bool rebuild = !built_ || attempt > 0;
-      if (!rebuild) {
-        const Real disp = opt_.evolve_particles ? ns_.max_displacement_since_build(x) : 0;
-        std::size_t short_lists = 0;
-#pragma omp parallel for schedule(static) reduction(+ : short_lists)
-        for (std::size_t i = 0; i < n_; ++i) {
-          list_h_served_[i] = (radii_[i] - 2 * disp) / K::support;
-          short_lists += h_[i] > list_h_served_[i];
-        }
-        rebuild = short_lists > 0;
-      }
+      const bool rebuild = !built_ || attempt > 0 || !lists_serve(x);  // spmhd_lists.cpp
       if (rebuild) {
         // a retry's lists only grow: the needs of every attempt so far are kept
         if (const int rc = build_neighbours(x, attempt > 0)) return rc;

@@ -329,6 +329,14 @@ class SpmhdScheme final : public OdeSystem {
   // h the lists serve now; list_h_needed_[i] > 0: the h the next build must serve (an h grew past
   // list_h_served_[i]).
   std::vector<Real> list_h_, list_h_served_, list_h_needed_, radii_;
+  // lists_serve: whether the lists hold every pair at x (the Verlet rule, a few fast movers apart)
+  static constexpr std::size_t kFastMovers = 32;
+  bool lists_serve(const Real* x);
+  bool serve_against(Real partner, const std::uint8_t* fast);
+  bool fast_movers_listed(const Real* x);
+  std::vector<Real> displacement_;             // since the last build, per slot
+  std::vector<std::uint32_t> fast_movers_;     // the slots that moved most
+  std::vector<std::uint8_t> is_fast_mover_, in_row_;
   std::vector<Real> cand_;          // per-thread candidate (r^2, r, m) of the density solve
   std::size_t max_list_ = 0;        // longest neighbour list of the current build
   std::size_t interacting_pairs_ = 0;
