@@ -5,17 +5,26 @@
 
 namespace sphark {
 
+namespace {
+
+// Squared distance particle i (stored at order[i]) has moved since the reference positions.
+template <int D>
+Real squared_displacement(const Real* x, const Real* ref, std::size_t i, const std::optional<PeriodicBox<D>>& box,
+                          const std::uint32_t* order) {
+  const std::size_t p = order ? order[i] : i;
+  Vec<D> d = Eigen::Map<const Vec<D>>(x + D * p) - Eigen::Map<const Vec<D>>(ref + D * i);
+  if (box) d = box->minimum_image(d);
+  return d.squaredNorm();
+}
+
+}  // namespace
+
 template <int D>
 Real max_displacement(const Real* x, const Real* ref, std::size_t n, const std::optional<PeriodicBox<D>>& box,
                       const std::uint32_t* order) {
   Real m2 = 0;
 #pragma omp parallel for reduction(max : m2) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t p = order ? order[i] : i;
-    Vec<D> d = Eigen::Map<const Vec<D>>(x + D * p) - Eigen::Map<const Vec<D>>(ref + D * i);
-    if (box) d = box->minimum_image(d);
-    m2 = std::max(m2, d.squaredNorm());
-  }
+  for (std::size_t i = 0; i < n; ++i) m2 = std::max(m2, squared_displacement<D>(x, ref, i, box, order));
   return std::sqrt(m2);
 }
 
@@ -24,12 +33,7 @@ void displacements(const Real* x, const Real* ref, std::size_t n, const std::opt
                    std::vector<Real>& out, const std::uint32_t* order) {
   out.resize(n);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t p = order ? order[i] : i;
-    Vec<D> d = Eigen::Map<const Vec<D>>(x + D * p) - Eigen::Map<const Vec<D>>(ref + D * i);
-    if (box) d = box->minimum_image(d);
-    out[i] = d.norm();
-  }
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::sqrt(squared_displacement<D>(x, ref, i, box, order));
 }
 
 template void displacements<1>(const Real*, const Real*, std::size_t, const std::optional<PeriodicBox<1>>&,

@@ -1,8 +1,8 @@
 // The neighbour lists' validity with a few fast movers (SpmhdScheme::lists_serve): three particles
 // of a disordered periodic lattice moved further than one displacement for all allows (the others
 // a little). Where no pair at the particles' h is missing the lists are kept, where one is they are
-// rebuilt; either way the derivatives are a fresh scheme's at the same state, to the density
-// solve's tolerance (a missing neighbour would be an error of order one in its terms).
+// rebuilt; either way the derivatives are a fresh scheme's at the same state, to ten times the
+// density solve's tolerance (a missing neighbour would be an error of order one in its terms).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -50,7 +50,9 @@ long builds_at(Lattice& c, Real t, const std::vector<Real>& y) {
   EXPECT_EQ(c.s.rhs(t, y.data(), f.data()), 0) << c.s.last_error();
   Lattice twin;
   EXPECT_EQ(twin.s.rhs(t, y.data(), fresh.data()), 0) << twin.s.last_error();
-  EXPECT_LT(relative_difference(f, fresh), 1e-7);
+  // The two density solves start from different h and stop within h_tolerance (1e-10) of the root:
+  // measured 2.6e-12 to 3.2e-12 here, bounded by ten h_tolerances (a missing pair: order one).
+  EXPECT_LT(relative_difference(f, fresh), 10 * c.s.options().h_tolerance);
   return c.s.neighbour_builds() - before;
 }
 

@@ -32,10 +32,8 @@ void SpmhdScheme<D, K>::spread_cleaning_speeds() {
   constexpr std::uint8_t far = std::numeric_limits<std::uint8_t>::max();
   spread_hops_.assign(n_, subset ? far : 0);
   if (subset) {
-    slot_of_.resize(n_);
-    for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
-    for (std::size_t i : serve_particles_)
-      if (i < n_) spread_hops_[slot_of_[i]] = 0;
+    slots_of(serve_particles_, served_slots_);
+    for (const std::uint32_t a : served_slots_) spread_hops_[a] = 0;
     for (int hop = 0; hop < passes; ++hop)  // R: hop <= 1 (the served rows' neighbours); then further
       for (std::size_t a = 0; a < n_; ++a)
         if (spread_hops_[a] == hop)

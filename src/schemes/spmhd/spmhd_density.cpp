@@ -83,14 +83,11 @@ void SpmhdScheme<D, K>::slots_to_solve() {
     return;
   }
   const NeighbourList& L = ns_.list();
-  slot_of_.resize(n_);
-  for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
   std::vector<char>& wanted = solve_wanted_;
   wanted.assign(n_, 0);
   const bool neighbours = opt_.subset_density == SubsetDensity::Solved;
-  for (std::size_t i : serve_particles_) {
-    if (i >= n_) continue;  // a sink
-    const std::size_t a = slot_of_[i];
+  slots_of(serve_particles_, served_slots_);
+  for (const std::size_t a : served_slots_) {
     wanted[a] = 1;
     if (neighbours)
       for (std::size_t k = L.begin(a); k < L.end(a); ++k) wanted[L.indices[k]] = 1;

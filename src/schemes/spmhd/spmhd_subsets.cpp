@@ -43,6 +43,15 @@ class ServeOnly {
 }  // namespace
 
 template <int D, class K>
+void SpmhdScheme<D, K>::slots_of(std::span<const std::size_t> particles, std::vector<std::uint32_t>& slots) {
+  slot_of_.resize(n_);
+  for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
+  slots.clear();
+  for (const std::size_t i : particles)
+    if (i < n_) slots.push_back(slot_of_[i]);
+}
+
+template <int D, class K>
 int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) {
   if (halo_) throw std::logic_error("SpmhdScheme::rhs_subset: not for a distributed scheme");
   ++rhs_calls_;
@@ -52,11 +61,7 @@ int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::si
     if (const int rc = prepare(t, y); rc != 0) return rc;
   }
   std::fill(ydot, ydot + layout_.size(), 0.0);
-  slot_of_.resize(n_);
-  for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
-  active_slots_.clear();
-  for (std::size_t i : active)
-    if (i < n_) active_slots_.push_back(slot_of_[i]);
+  slots_of(active, active_slots_);
   std::sort(active_slots_.begin(), active_slots_.end());  // rows in slot (memory) order
   force_pass(y, ydot, &active_slots_);
   if (opt_.self_gravity) gravity_pass(ydot, &active_slots_);
@@ -129,13 +134,10 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
   if (own_steps_by_slot(t, y, ydot) != 0) return 1;
   constexpr Real inf = std::numeric_limits<Real>::infinity();
   std::fill(dt, dt + num_particles(), inf);
-  slot_of_.resize(n_);
-  for (std::size_t s = 0; s < n_; ++s) slot_of_[perm_[s]] = static_cast<std::uint32_t>(s);
+  slots_of(active, served_slots_);  // (a sink: below)
   const MinimumImage<D> image(ns_.box());
   active_steps_.clear();
-  for (std::size_t i : active) {
-    if (i >= n_) continue;  // a sink: below
-    const std::size_t a = slot_of_[i];
+  for (const std::size_t a : served_slots_) {
     // Both directions of the limiter over a's neighbours within reach (a branch-free distance
     // pass first): the least own step among them (least_neighbour_step's), its bound on each.
     const std::size_t n_near = entries_within_reach(a, image, limiter_near_, 0);
@@ -163,6 +165,7 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
 }
 
 #define SPHARK_SPMHD_SUBSETS(D, K)                                                                        \
+  template void SpmhdScheme<D, K>::slots_of(std::span<const std::size_t>, std::vector<std::uint32_t>&);     \
   template int SpmhdScheme<D, K>::rhs_subset(Real, const Real*, std::span<const std::size_t>, Real*);   \
   template int SpmhdScheme<D, K>::particle_stable_dt(Real, const Real*, const Real*, Real*);              \
   template int SpmhdScheme<D, K>::own_steps_by_slot(Real, const Real*, const Real*);                      \

@@ -210,6 +210,8 @@ class SpmhdScheme final : public OdeSystem {
   static Real list_growth_for_attempt(int attempt);  // spmhd_density.cpp
   Real half_period() const;  // half the shortest periodic side of the box (+inf: none)
   void slots_to_solve();  // solve_slots_: the slots prepare() must solve, of those it serves
+  // slots: the slots (memory rows) of the gas particles among `particles`, in their order (sinks skipped)
+  void slots_of(std::span<const std::size_t> particles, std::vector<std::uint32_t>& slots);
   void densities_of_predicted_h();  // SubsetDensity::Predicted: rho of the unsolved slots from their h
   void set_h_time(Real t);  // every slot's h solved at t
   // lists for list_h_ (grow_only: no list shorter than the last build's), then slots in cell order
@@ -309,7 +311,8 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> scratch_;
   std::vector<Real> subset_scratch_;           // rhs_subset: the sink forces of all particles
   std::vector<std::uint32_t> active_slots_;    // rhs_subset: the active gas particles' slots
-  std::vector<std::uint32_t> slot_of_;         // rhs_subset: particle -> slot
+  std::vector<std::uint32_t> slot_of_;         // slots_of: particle -> slot
+  std::vector<std::uint32_t> served_slots_;    // slots_of's answer for the served particles
   std::vector<Real> courant_steps_, force_steps_;  // particle_stable_dt
   std::vector<Real> own_of_slot_, active_steps_;   // active_stable_dt
   std::vector<std::uint32_t> limiter_near_;        // its neighbours within reach of one active row
