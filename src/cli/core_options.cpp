@@ -29,6 +29,10 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
   p.add("--mri-ratio", &o.mri_ratio, "--stepper mri-<table>: slow step / fast step", Positive{});
   p.add("--mri-fast-table", &o.mri_fast_table, "--stepper mri-<table>: the fast integrator's ERK table",
         OneOf{erk_table_names()});
+  p.add("--partition-hysteresis", &o.partition_hysteresis,
+        "--stepper leapfrog-blocks or mri-<table>: a particle moves to a longer step only when its stable step "
+        "exceeds it by this fraction",
+        NonNegative{});
   p.add("--output-every", &o.output_every,
         "simulated time between output frames, 0 = first and last only", NonNegative{});
   p.add("--threads", &o.threads, "OpenMP threads, 0 = OpenMP default", NonNegative{});
@@ -62,6 +66,7 @@ StepperOptions stepper_options(const CoreOptions& o) {
   s.velocity_tolerance = o.velocity_tolerance;
   s.mri_ratio = o.mri_ratio;
   s.mri_fast_table = o.mri_fast_table;
+  s.partition_hysteresis = o.partition_hysteresis;
   return s;
 }
 

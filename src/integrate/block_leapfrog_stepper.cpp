@@ -164,13 +164,20 @@ void BlockLeapfrogStepper::count(const std::vector<std::size_t>& active) {
   }
 }
 
-// Every particle's w predicted to the event (w*), into eval_.
+// Every particle's w predicted to the event (w*), into eval_: one pass over the entries (the
+// positions as they are), each led from the middle of its particle's step.
 void BlockLeapfrogStepper::predict(std::int64_t tick) {
-  eval_ = w_;
-  for (std::size_t j = 0; j < level_.size(); ++j) {
-    const Real lead = (static_cast<Real>(tick - start_[j]) - 0.5 * static_cast<Real>(length(level_[j]))) * tick_dt_;
-    for (std::size_t k : entries_[j]) eval_[k] += lead * dy_[k];
-  }
+  lead_.resize(level_.size());
+  for (std::size_t j = 0; j < level_.size(); ++j)
+    lead_[j] = (static_cast<Real>(tick - start_[j]) - 0.5 * static_cast<Real>(length(level_[j]))) * tick_dt_;
+  eval_.resize(n_);
+  const auto led = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) eval_[k] = w_[k] + lead_[owner_[k]] * dy_[k];
+  };
+  led(0, xp_);
+  std::copy(w_.begin() + static_cast<std::ptrdiff_t>(xp_), w_.begin() + static_cast<std::ptrdiff_t>(xp_ + np_),
+            eval_.begin() + static_cast<std::ptrdiff_t>(xp_));
+  led(xp_ + np_, n_);
 }
 
 // The particles whose step goes on past `tick` and whose stable step is below it, from the stable
@@ -178,9 +185,11 @@ void BlockLeapfrogStepper::predict(std::int64_t tick) {
 // per event, the wake-up one event later); and those StepperOptions::wake_next named at the
 // previous event.
 std::vector<std::size_t> BlockLeapfrogStepper::woken_at(std::int64_t tick) const {
+  Real level_dt[kMaxLevel + 1];
+  for (int l = 0; l <= kMaxLevel; ++l) level_dt[l] = bins_.level_dt(l);
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < level_.size(); ++i)
-    if (start_[i] + length(level_[i]) > tick && (opts_.cfl_safety * stable_[i] < bins_.level_dt(level_[i]) ||
+    if (start_[i] + length(level_[i]) > tick && (opts_.cfl_safety * stable_[i] < level_dt[level_[i]] ||
                                                  std::binary_search(wake_next_.begin(), wake_next_.end(), i)))
       out.push_back(i);
   return out;

@@ -70,7 +70,10 @@ class BlockLeapfrogStepper final : public Stepper {
   std::vector<std::vector<std::size_t>> entries_;  // particle -> its kicked entries (not x)
   Real t_;
   std::vector<Real> y_, dy_;  // synchronised state at t_ and its derivative (FSAL)
-  std::vector<Real> w_, eval_, out_, stable_, bound_, pre_;  // pre_: the active entries before their end kicks  // stable_: each particle's step since its last rebin
+  std::vector<Real> w_, eval_, out_, bound_;
+  std::vector<Real> pre_;     // the active entries before their end kicks
+  std::vector<Real> stable_;  // each particle's step since its last rebin
+  std::vector<Real> lead_;    // predict: each particle's time from the middle of its step
   std::vector<int> level_;
   std::vector<std::int64_t> start_;  // tick at which each particle's current step began
   LevelPartition bins_;

@@ -22,6 +22,10 @@ void CloudCollapseScene::set_defaults(CoreOptions& core) {
   // Phantom's corrector iterations: without them the 8,486-particle cleaned run fails at 1.0735
   // t_ff (docs/cloud_collapse.md); with them the 2,502-particle run costs 8.5 % more evaluations.
   core.velocity_tolerance = 0.1;
+  // leapfrog-blocks: a particle takes a longer step as soon as its grid aligns (Phantom's rule):
+  // 4.2 % fewer particle evaluations and 12 % fewer events to 1.1 t_ff than with the margin 0.25
+  // at 8,486 particles, the same sink and curves (docs/time_integration.md, session 30).
+  core.partition_hysteresis = 0;
   core.rtol = 1e-4;
   core.atol = 1e-8;
 }

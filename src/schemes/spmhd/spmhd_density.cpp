@@ -111,6 +111,15 @@ Real SpmhdScheme<D, K>::list_growth_for_attempt(int attempt) {
   return attempt < 4 ? 1.5 : 4.0;
 }
 
+// At the positions of the last ensure_neighbours_and_density, at its time and with its h rates:
+// whether the slots the current call serves are all solved (nothing for another call to do).
+template <int D, class K>
+bool SpmhdScheme<D, K>::served_slots_solved_at(Real t) {
+  if (!(t == t_ensured_) || h_rate_known_ != rate_known_at_ensure_) return false;
+  slots_to_solve();
+  return solve_slots_.empty();
+}
+
 template <int D, class K>
 int SpmhdScheme<D, K>::ensure_neighbours_and_density(Real t, const Real* x) {
   if (h_unset_) first_smoothing_lengths(x, true);
@@ -338,6 +347,7 @@ void SpmhdScheme<D, K>::first_smoothing_lengths(const Real* x, bool apply) {
   template void SpmhdScheme<D, K>::set_h_time(Real);                                 \
   template Real SpmhdScheme<D, K>::gravitational_zeta_of(const Real*, const Real*, std::size_t, int, Real, Real, Real); \
   template void SpmhdScheme<D, K>::slots_to_solve();                                 \
+  template bool SpmhdScheme<D, K>::served_slots_solved_at(Real);                     \
   template void SpmhdScheme<D, K>::densities_of_predicted_h();                                 \
   template SpmhdScheme<D, K>::DensityStats SpmhdScheme<D, K>::solve_density(const Real*,               \
                                                                             const std::vector<std::uint32_t>*);

@@ -286,11 +286,15 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
       std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
       solved_at_x_.assign(n_, 0);
     }
-    if (moved || std::find(solved_at_x_.begin(), solved_at_x_.end(), 0) != solved_at_x_.end()) {
+    // A second call at the same (t, x) whose served slots are solved (a subset's active_stable_dt
+    // after its rhs_subset) would repeat the last call's list check and predictions: skipped.
+    const bool unsolved = std::find(solved_at_x_.begin(), solved_at_x_.end(), 0) != solved_at_x_.end();
+    if (moved || (unsolved && !served_slots_solved_at(t))) {
       if (const int rc = ensure_neighbours_and_density(t, x)) {
         built_ = false;  // x_ is not what the lists and h were made for
         return rc;
       }
+      t_ensured_ = t, rate_known_at_ensure_ = h_rate_known_;
     }
   } else if (!built_) {
     if (const int rc = ensure_neighbours_and_density(t, x)) return rc;

@@ -68,11 +68,12 @@ int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::si
   if (opt_.sink_particles && layout_.particles(Species::Sink) > 0) {
     subset_scratch_.assign(layout_.size(), 0.0);
     sink_pass(y, subset_scratch_.data());  // the sink forces on all; kept for the active particles
-    const std::vector<std::size_t> owner = entry_particles();
-    std::vector<char> is_active(n_ + layout_.particles(Species::Sink), 0);
-    for (std::size_t i : active) is_active.at(i) = 1;
-    for (std::size_t k = 0; k < owner.size(); ++k)
-      if (is_active[owner[k]]) ydot[k] += subset_scratch_[k];
+    const std::size_t sinks = layout_.particles(Species::Sink);
+    if (entry_owner_counts_ != std::pair{n_, sinks}) entry_owner_ = entry_particles(), entry_owner_counts_ = {n_, sinks};
+    is_active_.assign(n_ + sinks, 0);
+    for (std::size_t i : active) is_active_.at(i) = 1;
+    for (std::size_t k = 0; k < entry_owner_.size(); ++k)
+      if (is_active_[entry_owner_[k]]) ydot[k] += subset_scratch_[k];
   }
   return 0;
 }

@@ -19,9 +19,11 @@
 // from the state and derivatives scattered back. Neighbour rows are sorted by particle index,
 // so every sum runs in the same order whatever the slots: results do not depend on them.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sphark/integrate/ode_system.hpp"
@@ -210,6 +212,7 @@ class SpmhdScheme final : public OdeSystem {
   static Real list_growth_for_attempt(int attempt);  // spmhd_density.cpp
   Real half_period() const;  // half the shortest periodic side of the box (+inf: none)
   void slots_to_solve();  // solve_slots_: the slots prepare() must solve, of those it serves
+  bool served_slots_solved_at(Real t);  // prepare(): nothing to solve at x_ for the served slots at t
   // slots: the slots (memory rows) of the gas particles among `particles`, in their order (sinks skipped)
   void slots_of(std::span<const std::size_t> particles, std::vector<std::uint32_t>& slots);
   void densities_of_predicted_h();  // SubsetDensity::Predicted: rho of the unsolved slots from their h
@@ -305,11 +308,16 @@ class SpmhdScheme final : public OdeSystem {
   std::span<const std::size_t> serve_particles_;
   std::vector<std::uint32_t> solve_slots_;
   std::vector<char> solve_wanted_;
+  Real t_ensured_ = std::numeric_limits<Real>::quiet_NaN();  // the last ensure_neighbours_and_density's t
+  bool rate_known_at_ensure_ = false;                        // ... and its h_rate_known_
   bool h_rate_known_ = false;  // divv_ is from a force pass after the last solve (predict_smoothing_lengths)
   std::vector<Real> tensile_weight_;  // tensile_weights
   std::vector<Real> cleaning_speeds_;  // c_h,a (all equal to cleaning_speed_ unless local_ch)
   std::vector<Real> scratch_;
   std::vector<Real> subset_scratch_;           // rhs_subset: the sink forces of all particles
+  std::vector<std::size_t> entry_owner_;       // rhs_subset: entry_particles() for the counts below
+  std::pair<std::size_t, std::size_t> entry_owner_counts_{~std::size_t{0}, 0};  // (gas, sinks) it was made for
+  std::vector<char> is_active_;                // rhs_subset: per particle
   std::vector<std::uint32_t> active_slots_;    // rhs_subset: the active gas particles' slots
   std::vector<std::uint32_t> slot_of_;         // slots_of: particle -> slot
   std::vector<std::uint32_t> served_slots_;    // slots_of's answer for the served particles
