@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "sphark/core/profile.hpp"
 #include "sphark/diagnostics/column_density.hpp"
 #include "sphark/diagnostics/step_levels.hpp"
 #include "sphark/scenes/cloud_collapse/cloud_collapse.hpp"
@@ -348,6 +349,44 @@ TEST(CloudSubsets, PredictedNeighbourDensitiesSolveTheActiveParticlesOnly) {
       EXPECT_NEAR(rho_sub[i], s.masses()[i] * eta3 / std::pow(h_sub[i], 3), 1e-15 * rho_sub[i]) << i;
     }
   }
+}
+
+// A block event's second call at the same (t, x) — active_stable_dt after rhs_subset — finds
+// its served slots solved and skips the list check and h predictions (SpmhdScheme::prepare):
+// no neighbour phase, and the steps of a scheme that never made the first call, bit for bit. At
+// the same positions but a later t the predictions are redone: the derivatives are those of a
+// scheme called at that t alone (to the density solve's tolerance: its active slots start their
+// solves from other guesses). The gas converges (v = -x / 2), so the predicted h move with t.
+TEST(CloudSubsets, ASecondCallAtTheSameStateSkipsItsListCheckButNotALaterTime) {
+  CloudCollapseParams p = small(1500);
+  CloudCollapse a(p), fresh(p), later(p);
+  SpmhdScheme<3>& s = a.scheme;
+  std::vector<Real> y = a.y0, out(y.size()), fa(y.size()), ff(y.size());
+  const std::size_t x0 = s.layout().offset(Field::Position), v0 = s.layout().offset(Field::Velocity), n = s.particles();
+  for (std::size_t k = 0; k < 3 * n; ++k) y[v0 + k] = -0.5 * y[x0 + k];
+  for (CloudCollapse* c : {&a, &fresh, &later}) ASSERT_EQ(c->scheme.rhs(0, y.data(), out.data()), 0);
+  std::vector<Real> moved = y;
+  for (std::size_t k = 0; k < 3 * n; ++k) moved[x0 + k] *= 0.999;
+  std::vector<std::size_t> active;
+  for (std::size_t i = 3; i < n; i += 7) active.push_back(i);
+  std::vector<Real> dt_a(s.num_particles()), dt_fresh(s.num_particles());
+  struct Profiling {  // the phase counts, for this test only
+    Profiling() { run_profile().reset(), run_profile().enable(); }
+    ~Profiling() { run_profile().enable(false), run_profile().reset(); }
+  } profiling;
+  ASSERT_EQ(s.rhs_subset(0.01, moved.data(), active, fa.data()), 0) << s.last_error();
+  const long checks = run_profile().calls(Phase::Neighbours);
+  ASSERT_EQ(s.active_stable_dt(0.01, moved.data(), fa.data(), active, dt_a.data()), 0) << s.last_error();
+  EXPECT_EQ(run_profile().calls(Phase::Neighbours), checks);  // skipped
+  ASSERT_EQ(fresh.scheme.active_stable_dt(0.01, moved.data(), fa.data(), active, dt_fresh.data()), 0);
+  EXPECT_GT(run_profile().calls(Phase::Neighbours), checks);  // (its first call at moved: checked)
+  for (std::size_t i = 0; i < dt_a.size(); ++i) ASSERT_EQ(dt_a[i], dt_fresh[i]) << i;
+  ASSERT_EQ(s.rhs_subset(0.02, moved.data(), active, fa.data()), 0) << s.last_error();
+  ASSERT_EQ(later.scheme.rhs_subset(0.02, moved.data(), active, ff.data()), 0);
+  Real diff = 0, scale = 0;
+  for (std::size_t k = 0; k < fa.size(); ++k) diff = std::max(diff, std::abs(fa[k] - ff[k])), scale = std::max(scale, std::abs(ff[k]));
+  std::printf("at t = 0.02 after t = 0.01, same positions: max relative difference %.2e\n", diff / scale);
+  EXPECT_LT(diff / scale, 10 * s.options().h_tolerance);
 }
 
 // The lists' skin mostly one length for all (SpmhdOptions::skin_own_fraction 0.1, the scene's

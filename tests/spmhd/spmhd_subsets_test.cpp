@@ -252,6 +252,8 @@ TEST(SpmhdSubsets, RemovedParticlesLeaveTheOthersListsAndTheSameDerivatives) {
   std::vector<Real> f(c.y.size());
   ASSERT_EQ(s.rhs(0, c.y.data(), f.data()), 0) << s.last_error();
   ASSERT_EQ(twin.scheme->rhs(0, twin.y.data(), f.data()), 0);
+  const std::vector<std::size_t> first_and_sink = {0, s.num_particles() - 1};
+  ASSERT_EQ(s.rhs_subset(0, c.y.data(), first_and_sink, f.data()), 0);  // (its per-layout scratch made)
   const StateLayout before = s.layout();
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < s.particles(); ++i)
@@ -267,6 +269,17 @@ TEST(SpmhdSubsets, RemovedParticlesLeaveTheOthersListsAndTheSameDerivatives) {
   EXPECT_EQ(s.neighbour_builds(), builds);  // the lists carried over
   EXPECT_EQ(twin.scheme->neighbour_builds(), twin_builds + 1);
   for (std::size_t k = 0; k < y.size(); ++k) ASSERT_EQ(fs[k], ft[k]) << "entry " << k;
+  // Subsets of the new layout (the sink among them) still split rhs() bit for bit.
+  std::vector<std::size_t> odd, even;
+  for (std::size_t i = 0; i < s.num_particles(); ++i) (i % 2 ? odd : even).push_back(i);
+  std::vector<Real> fo(y.size()), fe(y.size());
+  ASSERT_EQ(s.rhs_subset(1e-3, y.data(), odd, fo.data()), 0) << s.last_error();
+  ASSERT_EQ(s.rhs_subset(1e-3, y.data(), even, fe.data()), 0) << s.last_error();
+  const std::vector<std::size_t> owner = s.entry_particles();
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    EXPECT_EQ((owner[k] % 2 ? fe : fo)[k], 0.0) << "entry " << k << " outside its set";
+    ASSERT_EQ((owner[k] % 2 ? fo : fe)[k], fs[k]) << "entry " << k;
+  }
 }
 
 }  // namespace
