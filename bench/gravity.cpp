@@ -4,6 +4,7 @@
 // the tree ns / (particle log2 N) (flat if the cost is N log N), far (cell-cell) interactions
 // and near particle pairs per particle. Single-thread rows report CPU time; 2-thread rows wall
 // time (UseRealTime). Compare with bench_spmhd_rhs (3D row) run in the same session.
+// BM_TreeBuild: the tree's build alone, afresh against a rebuild from the last build's order.
 //   build/bin/bench_gravity --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -147,6 +148,26 @@ void BM_DirectGravity(benchmark::State& state) {
   set_counters(state, p.size());
 }
 
+// The tree's build alone, one thread: args n, warm (1: every build alternates between two
+// position sets 1e-3 of the radius apart, as between the events of a block-step run, so each
+// rebuild starts from the last order; 0: a fresh tree object every build).
+void BM_TreeBuild(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const bool warm = state.range(1) != 0;
+  const SphereParticles& a = sphere(SphereProfile::InverseR, n);
+  SphereParticles b = a;
+  for (std::size_t k = 0; k < b.x.size(); ++k) b.x[k] += 1e-3 * std::sin(static_cast<double>(7 * k));
+  omp_set_num_threads(1);
+  GravityTree tree;
+  long builds = 0;
+  for (auto _ : state) {
+    if (!warm) tree = GravityTree{};
+    tree.build((builds++ % 2 ? b : a).sources(), 2, GravityOptions{}.leaf_size);
+    benchmark::DoNotOptimize(tree.nodes().data());
+  }
+  set_counters(state, n);
+}
+
 void tree_args(benchmark::internal::Benchmark* b, int threads) {
   b->ArgNames({"n", "threads", "profile", "leaf", "simd", "opening"});
   const GravityOptions o;
@@ -165,6 +186,7 @@ void direct_args(benchmark::internal::Benchmark* b, int threads) {
 
 BENCHMARK(BM_TreeGravity)->Apply([](auto* b) { tree_args(b, 1); })->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TreeGravity)->Apply([](auto* b) { tree_args(b, 2); })->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TreeBuild)->ArgNames({"n", "warm"})->ArgsProduct({{3000, 10000, 30000, 100000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DirectGravity)->Apply([](auto* b) { direct_args(b, 1); })->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DirectGravity)->Apply([](auto* b) { direct_args(b, 2); })->UseRealTime()->Unit(benchmark::kMillisecond);
 // leaf-size scan at N = 1e5 and 1e6 (uniform), one thread; SSE2 against AVX2 loops

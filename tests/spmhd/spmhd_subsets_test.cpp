@@ -189,6 +189,55 @@ TEST(SpmhdSubsets, ActiveStableStepsBoundTheOthersByTheLimiterOfTheActiveOnes) {
   EXPECT_LT(own + active.size(), n);  // some are beyond every active particle's reach
 }
 
+// The limiter reads the interacting neighbours of the last subset force pass, and only at that
+// pass's state: after an evaluation at y1, active_stable_dt at y2 (each particle moved by up to a
+// tenth of an h, so that pairs enter each other's reach) bounds each active particle by its
+// neighbours within reach at y2, and caps each of those (brute force), not those at y1.
+TEST(SpmhdSubsets, TheLimiterReadsTheForcePassRowsOnlyAtTheirState) {
+  Clump c = clump(0, 2, 0, 1.0);
+  SpmhdScheme<3>& s = *c.scheme;
+  const std::size_t np = s.num_particles(), x0 = s.layout().offset(Field::Position);
+  const std::size_t v0 = s.layout().offset(Field::Velocity);
+  for (int k = 0; k < 3; ++k) c.y[v0 + 3 * 7 + k] *= 300;  // particle 7: a short step, which bounds its neighbours
+  std::vector<Real> f(c.y.size()), dt(np), courant, force;
+  ASSERT_EQ(s.rhs(0, c.y.data(), f.data()), 0) << s.last_error();
+  const std::vector<Real> y1 = moved(s, c.y);
+  std::vector<Real> y2 = y1;
+  const Real h0 = s.h()[0];
+  for (std::size_t k = 0; k < 3 * s.particles(); ++k) y2[x0 + k] += 0.1 * h0 * std::sin(1.3 * static_cast<Real>(k));
+  const std::vector<std::size_t> active{3, 7, 150};
+  const auto within_reach = [&](std::size_t a, std::size_t b) {
+    const std::vector<Real>&x = s.positions(), &h = s.h();
+    const Real r = (Eigen::Map<const Vec<3>>(&x[3 * a]) - Eigen::Map<const Vec<3>>(&x[3 * b])).norm();
+    return b != a && r < CubicSpline<3>::support * std::max(h[a], h[b]);
+  };
+  ASSERT_EQ(s.rhs_subset(1e-3, y1.data(), active, f.data()), 0) << s.last_error();
+  std::vector<std::vector<char>> reach_at_y1;
+  for (std::size_t a : active) {
+    reach_at_y1.emplace_back(s.particles());
+    for (std::size_t b = 0; b < s.particles(); ++b) reach_at_y1.back()[b] = within_reach(a, b);
+  }
+  ASSERT_EQ(s.active_stable_dt(2e-3, y2.data(), f.data(), active, dt.data()), 0) << s.last_error();
+  ASSERT_EQ(s.stable_steps(2e-3, y2.data(), f.data(), courant, force), 0);  // (the same state: no solve)
+  std::size_t entered = 0, capped_on_entering = 0;
+  for (std::size_t i = 0; i < active.size(); ++i)  // the others within reach at y2: capped by the active one
+    for (std::size_t b = 0; b < s.particles(); ++b) {
+      const Real cap = 4 * std::min(courant[active[i]], force[active[i]]);
+      if (std::binary_search(active.begin(), active.end(), b) || !within_reach(active[i], b)) continue;
+      EXPECT_LE(dt[b], cap) << "particle " << b << " near active " << active[i];
+      capped_on_entering += !reach_at_y1[i][b] && std::min(courant[b], force[b]) > cap;
+    }
+  EXPECT_GT(capped_on_entering, 0u);  // some entered the reach of the short-stepping one
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    const std::size_t a = active[i];
+    Real least = std::numeric_limits<Real>::infinity();
+    for (std::size_t b = 0; b < s.particles(); ++b)
+      if (within_reach(a, b)) least = std::min(least, std::min(courant[b], force[b])), entered += !reach_at_y1[i][b];
+    EXPECT_EQ(dt[a], std::min(std::min(courant[a], force[a]), 4 * least)) << "active particle " << a;
+  }
+  EXPECT_GT(entered, 0u);  // the test can tell the two states' rows apart
+}
+
 // Two clumps a unit apart (no gravity), then mirrored through the origin (x -> -x: every
 // distance, so every density, exactly as it was; the clumps trade places in the cell grid's
 // order, so the slots are renumbered). A subset of one clump solves its neighbourhood only; the

@@ -5,7 +5,9 @@
 // subtree), until a node holds at most leaf_size particles. Nodes are numbered
 // in pre-order (a parent before its children; left child = node + 1), so a node's index and its
 // children's follow from the particle counts alone: the build is level by level, OpenMP over the
-// nodes of a level, and its result does not depend on the thread count.
+// nodes of a level. Ties along a split axis go by particle index and each leaf lists its particles
+// by index, so the tree is a function of the positions alone: not of the thread count, nor of the
+// order of the last build, from which a rebuild of as many particles starts (most splits stand).
 //
 // Per node: mass, centre of mass z, second moment Q = sum m (x - z)(x - z)^T, radius
 // r = max |x - z| (exact, over its particles) and reach = support * max h (how far the softening
@@ -62,11 +64,21 @@ class GravityTree {
     Real x[3];
     std::uint32_t index;
   };
+  struct Plane {  // a node's last split: its left side held the points with x[axis] < at
+    Real at = 0;
+    std::int8_t axis = -1;  // none
+  };
+  bool split_at_plane(std::vector<BuildPoint>::iterator first, std::uint32_t half, std::vector<BuildPoint>::iterator last,
+                      Plane& plane);
   std::vector<BuildPoint> points_;  // the particles during the build, partitioned in place
   std::vector<TreeNode> nodes_;
   std::vector<std::uint32_t> order_, leaves_, level_, next_level_;
   std::vector<Real> px_, py_, pz_, pm_, ph_, phinv_;
   long allocations_ = 0;
+  std::uint32_t built_for_ = 0;  // the particle count of the last build (points_ holds its order)
+  int built_leaf_size_ = 0;
+  bool warm_ = false;            // this build starts from the last one's order and planes
+  std::vector<Plane> plane_;     // per node
 };
 
 // Particles of the left child of a node of n > leaf_size particles.

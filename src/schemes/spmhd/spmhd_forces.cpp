@@ -176,6 +176,7 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
   const std::size_t room = max_list_ + 8;  // a row plus a padded block
   row_scratch_.resize(room * static_cast<std::size_t>(omp_get_max_threads()));
   std::size_t pairs = 0;
+  if (only && interacting_rows_.size() < only->size()) interacting_rows_.resize(only->size());
 #pragma omp parallel reduction(+ : pairs)
   {
     std::uint32_t* inside = row_scratch_.data() + room * static_cast<std::size_t>(omp_get_thread_num());
@@ -188,12 +189,14 @@ void SpmhdScheme<D, K>::force_pass(const Real* y, Real* ydot, const std::vector<
                        sizeof(Real) * Record<D>::size);
       const PairSums<D> sums = row(in, a, inside);
       pairs += sums.pairs;
+      if (only) interacting_rows_[i].assign(inside, inside + sums.pairs);  // (for active_stable_dt)
       const ParticleA<D> pa{a, h_[a], rho_[a], Eigen::Map<const Vec3>(&B_[3 * a]),
                             evolve ? Vec<D>(Eigen::Map<const Vec<D>>(&v_[D * a])) : Vec<D>(Vec<D>::Zero())};
       finish_particle(sums, pa, fin, out);
     }
   }
   h_rate_known_ = true;  // div v (of every row, or of the active ones) for predict_smoothing_lengths
+  interacting_rows_valid_ = only != nullptr;
   interacting_pairs_ = pairs;
   pairs_total_ += static_cast<double>(pairs);
 }

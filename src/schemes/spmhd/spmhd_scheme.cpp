@@ -290,6 +290,7 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
     // after its rhs_subset) would repeat the last call's list check and predictions: skipped.
     const bool unsolved = std::find(solved_at_x_.begin(), solved_at_x_.end(), 0) != solved_at_x_.end();
     if (moved || (unsolved && !served_slots_solved_at(t))) {
+      interacting_rows_valid_ = false;
       if (const int rc = ensure_neighbours_and_density(t, x)) {
         built_ = false;  // x_ is not what the lists and h were made for
         return rc;
@@ -297,6 +298,7 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
       t_ensured_ = t, rate_known_at_ensure_ = h_rate_known_;
     }
   } else if (!built_) {
+    interacting_rows_valid_ = false;
     if (const int rc = ensure_neighbours_and_density(t, x)) return rc;
   }
   // the other fields of this rank's particles (distributed: the halo's follow before the force

@@ -85,6 +85,7 @@ void SpmhdScheme<D, K>::change_particles(const std::vector<std::size_t>& kept, s
 // the lists or solve every density again. Their densities are due again (a neighbour may be gone).
 template <int D, class K>
 void SpmhdScheme<D, K>::remove_particles(const std::vector<std::size_t>& kept, std::size_t sinks) {
+  interacting_rows_valid_ = false;
   constexpr std::uint32_t kGone = ~std::uint32_t{0};
   std::vector<std::uint32_t> number(n_, kGone);  // old particle -> new particle
   for (std::size_t i = 0; i < kept.size(); ++i) number[kept[i]] = static_cast<std::uint32_t>(i);

@@ -125,6 +125,19 @@ int SpmhdScheme<D, K>::particle_stable_dt(Real t, const Real* y, const Real* ydo
   return 0;
 }
 
+// Slot a's neighbours within support * max(h_a, h_b): the row of the last subset force pass at
+// this state if it had a (its interacting neighbours: the same, but for a itself), else a pass
+// over a's list.
+template <int D, class K>
+std::span<const std::uint32_t> SpmhdScheme<D, K>::neighbours_within_reach(std::size_t a, const MinimumImage<D>& image) {
+  if (interacting_rows_valid_) {
+    const auto row = std::lower_bound(active_slots_.begin(), active_slots_.end(), static_cast<std::uint32_t>(a));
+    if (row != active_slots_.end() && *row == a) return interacting_rows_[static_cast<std::size_t>(row - active_slots_.begin())];
+  }
+  const std::size_t n = entries_within_reach(a, image, limiter_near_, 0);  // (may grow limiter_near_)
+  return {limiter_near_.data(), n};
+}
+
 // After an evaluation of `active`: the limiter from the active side only (Phantom's wake-up,
 // Price et al. 2018 §2.3.4: a neighbour whose step is more than 4 x an active particle's own).
 template <int D, class K>
@@ -141,11 +154,10 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
   for (const std::size_t a : served_slots_) {
     // Both directions of the limiter over a's neighbours within reach (a branch-free distance
     // pass first): the least own step among them (least_neighbour_step's), its bound on each.
-    const std::size_t n_near = entries_within_reach(a, image, limiter_near_, 0);
+    const std::span<const std::uint32_t> near = neighbours_within_reach(a, image);
     const Real cap = kNeighbourStepFactor * own_of_slot_[a];
     Real least = std::numeric_limits<Real>::infinity();
-    for (std::size_t k = 0; k < n_near; ++k) {
-      const std::size_t b = limiter_near_[k];
+    for (const std::size_t b : near) {
       least = std::min(least, own_of_slot_[b]);
       Real& dt_b = dt[perm_[b]];
       dt_b = std::min(dt_b, cap);
@@ -171,6 +183,7 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
   template int SpmhdScheme<D, K>::particle_stable_dt(Real, const Real*, const Real*, Real*);              \
   template int SpmhdScheme<D, K>::own_steps_by_slot(Real, const Real*, const Real*);                      \
   template Real SpmhdScheme<D, K>::least_neighbour_step(std::size_t, const MinimumImage<D>&) const;      \
+  template std::span<const std::uint32_t> SpmhdScheme<D, K>::neighbours_within_reach(std::size_t, const MinimumImage<D>&); \
   template int SpmhdScheme<D, K>::active_stable_dt(Real, const Real*, const Real*, std::span<const std::size_t>, Real*);
 #define SPHARK_SPMHD_SUBSETS_2D_3D(K) SPHARK_SPMHD_SUBSETS(2, K<2>) SPHARK_SPMHD_SUBSETS(3, K<3>)
 SPHARK_KERNELS(SPHARK_SPMHD_SUBSETS_2D_3D)

@@ -324,6 +324,12 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<Real> courant_steps_, force_steps_;  // particle_stable_dt
   std::vector<Real> own_of_slot_, active_steps_;   // active_stable_dt
   std::vector<std::uint32_t> limiter_near_;        // its neighbours within reach of one active row
+  // The interacting neighbours of each row of the last subset force pass (rows in active_slots_'s
+  // order), for active_stable_dt at the same state; interacting_rows_valid_ until x, h or the
+  // slots change (prepare, remove_particles) or a full force pass runs.
+  std::vector<std::vector<std::uint32_t>> interacting_rows_;
+  bool interacting_rows_valid_ = false;
+  std::span<const std::uint32_t> neighbours_within_reach(std::size_t a, const MinimumImage<D>& image);
   int own_steps_by_slot(Real t, const Real* y, const Real* ydot);
   Real least_neighbour_step(std::size_t a, const MinimumImage<D>& image) const;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
