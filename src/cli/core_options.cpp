@@ -33,6 +33,10 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
         "--stepper leapfrog-blocks or mri-<table>: a particle moves to a longer step only when its stable step "
         "exceeds it by this fraction",
         NonNegative{});
+  p.add("--block-cycles", &o.block_cycles,
+        "--stepper leapfrog-blocks: top steps of --max-dt (fixed), or the way to each output in equal top steps "
+        "of at most --max-dt, as many as give the fewest particle evaluations (fitted)",
+        OneOf{{"fixed", "fitted"}});
   p.add("--output-every", &o.output_every,
         "simulated time between output frames, 0 = first and last only", NonNegative{});
   p.add("--threads", &o.threads, "OpenMP threads, 0 = OpenMP default", NonNegative{});
@@ -67,6 +71,7 @@ StepperOptions stepper_options(const CoreOptions& o) {
   s.mri_ratio = o.mri_ratio;
   s.mri_fast_table = o.mri_fast_table;
   s.partition_hysteresis = o.partition_hysteresis;
+  s.fit_block_cycles = o.block_cycles == "fitted";
   return s;
 }
 

@@ -45,8 +45,13 @@ class BlockLeapfrogStepper final : public Stepper {
  private:
   void index_entries();
   std::int64_t length(int level) const { return kTicks >> level; }
-  void cycle(Real top, Real t_end);  // sets t_ = t_end
-  void rebin(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
+  void cycle(Real t_out);  // one top step towards t_out (next_top), t_ set to its end
+  struct Top {
+    Real dt, t_end;
+  };
+  Top next_top(Real t_out) const;
+  void update_stable_steps(Real t, const std::vector<std::size_t>& particles);
+  void assign_levels(Real t, const std::vector<std::size_t>& particles, std::int64_t tick, bool fresh);
   void kick(const std::vector<std::size_t>& particles, Real half_step_factor, std::vector<Real>& w) const;
   std::vector<std::size_t> ending_at(std::int64_t tick) const;
   void predict(std::int64_t tick);

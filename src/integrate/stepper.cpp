@@ -185,7 +185,8 @@ std::string describe(const StepperOptions& o) {
   }
   if (o.method == "leapfrog-blocks") {
     s << "leapfrog KDK with power-of-two block steps, top dt=" << (o.fixed_dt > 0 ? o.fixed_dt : o.max_dt)
-      << ", levels from " << o.cfl_safety << " x particle_stable_dt, hysteresis " << o.partition_hysteresis;
+      << ", levels from " << o.cfl_safety << " x particle_stable_dt, hysteresis " << o.partition_hysteresis
+      << (o.fit_block_cycles ? ", cycles fitted" : "");
     return s.str();
   }
   if (o.method.rfind("mri-", 0) == 0) {

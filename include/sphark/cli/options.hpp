@@ -180,10 +180,12 @@ struct CoreOptions {
   // --partition-hysteresis: a particle's level (leapfrog-blocks, mri-<table>) grows only with this
   // margin (StepperOptions::partition_hysteresis).
   Real partition_hysteresis = StepperOptions{}.partition_hysteresis;
+  // --block-cycles fixed|fitted: leapfrog-blocks' top steps (StepperOptions::fit_block_cycles).
+  std::string block_cycles = "fixed";
 };
 
 // Registers --out, --t-end, --stepper, --rtol, --atol, --dt, --step-cap, --max-dt, --velocity-tolerance, --mri-ratio,
-// --mri-fast-table, --partition-hysteresis, --output-every, --threads, --no-render, --profile with the current values of
+// --mri-fast-table, --partition-hysteresis, --block-cycles, --output-every, --threads, --no-render, --profile with the current values of
 // `o` as defaults. `steppers` is the list of valid
 // --stepper names (it lives in integrate/); o.stepper must be one of them.
 void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> steppers);
@@ -196,7 +198,7 @@ std::vector<std::string> core_stepper_names();
 
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt,
 // cap_by_stability = step_cap, max_dt, velocity_tolerance, mri_ratio, mri_fast_table,
-// partition_hysteresis.
+// partition_hysteresis, fit_block_cycles = (block_cycles == "fitted").
 StepperOptions stepper_options(const CoreOptions& o);
 // The same for one run of `system`: when --stepper ark-imex meets a run without a stiff part
 // (e.g. no psi damping), says so in one line on stderr (unless `program` is empty) and uses

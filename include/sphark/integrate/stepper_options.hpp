@@ -104,6 +104,11 @@ struct StepperOptions {
   std::string mri_fast_table = "ARKODE_ZONNEVELD_5_3_4";
   Real mri_slow_fraction = 0.9;
   Real partition_hysteresis = 0.25;
+  // "leapfrog-blocks": instead of top steps of max_dt (the last shortened to land on t_out), the
+  // way to t_out in m equal top steps (each <= max_dt), m chosen at each cycle's start for the
+  // fewest particle evaluations at the particles' stable steps (the power-of-two ladder shifted
+  // to fit them); every cycle then bins afresh.
+  bool fit_block_cycles = false;
   // Distributed run: the ranks that each hold a part of the state (system.size() is then the
   // local length, every rank passes the same options). ARKODE runs on SUNDIALS' parallel
   // vectors (global norms), and the system's return codes, max_stable_dt (min), root functions
