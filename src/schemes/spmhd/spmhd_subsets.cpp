@@ -145,7 +145,25 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
                                         Real* dt) {
   if (active.size() >= num_particles()) return particle_stable_dt(t, y, ydot, dt);
   const ServeOnly served(serve_particles_, active);  // (own steps are read for them and their neighbours)
-  if (own_steps_by_slot(t, y, ydot) != 0) return 1;
+  try {
+    if (!opt_.evolve_particles) throw std::logic_error("active_stable_dt: fixed particles");
+    if (prepare(t, y) != 0) return 1;  // error_ says why
+  } catch (...) {
+    error_ = current_exception_message("SpmhdScheme::active_stable_dt");
+    return 1;
+  }
+  // Own steps of the slots read only (the active ones, their neighbours within reach, the solved
+  // ones: most particles are read by no active row), each at its first read.
+  own_of_slot_.assign(n_, std::numeric_limits<Real>::quiet_NaN());
+  bool finite = true;
+  const auto own = [&](std::size_t b) {
+    Real& step = own_of_slot_[b];
+    if (std::isnan(step)) {
+      step = std::min(courant_step(b, v_.data()), opt_.self_gravity ? force_step(b, ydot) : std::numeric_limits<Real>::infinity());
+      finite = finite && !std::isnan(step);  // (courant_step names the particle in error_)
+    }
+    return step;
+  };
   constexpr Real inf = std::numeric_limits<Real>::infinity();
   std::fill(dt, dt + num_particles(), inf);
   slots_of(active, served_slots_);  // (a sink: below)
@@ -155,20 +173,21 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
     // Both directions of the limiter over a's neighbours within reach (a branch-free distance
     // pass first): the least own step among them (least_neighbour_step's), its bound on each.
     const std::span<const std::uint32_t> near = neighbours_within_reach(a, image);
-    const Real cap = kNeighbourStepFactor * own_of_slot_[a];
+    const Real own_a = own(a), cap = kNeighbourStepFactor * own_a;
     Real least = std::numeric_limits<Real>::infinity();
     for (const std::size_t b : near) {
-      least = std::min(least, own_of_slot_[b]);
+      least = std::min(least, own(b));
       Real& dt_b = dt[perm_[b]];
       dt_b = std::min(dt_b, cap);
     }
-    active_steps_.push_back(std::min(own_of_slot_[a], kNeighbourStepFactor * least));
+    active_steps_.push_back(std::min(own_a, kNeighbourStepFactor * least));
   }
   // The particles whose density this event solved (the active ones' neighbourhoods; with
   // SubsetDensity::Predicted the active ones only): their own steps are current, and bound them
   // too (a neighbour compressed, or heated, past its level).
   for (std::size_t b = 0; b < n_; ++b)
-    if (solved_at_x_[b]) dt[perm_[b]] = std::min(dt[perm_[b]], own_of_slot_[b]);
+    if (solved_at_x_[b]) dt[perm_[b]] = std::min(dt[perm_[b]], own(b));
+  if (!finite) return 1;
   Real shortest = inf;  // over the active gas: a sink takes the shortest gas step
   std::size_t next = 0;
   for (std::size_t i : active)
