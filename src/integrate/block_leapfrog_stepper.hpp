@@ -1,5 +1,6 @@
 #pragma once
 // The "leapfrog-blocks" stepper's class (src/integrate/block_leapfrog_stepper.cpp: the scheme;
+// block_leapfrog_levels.cpp: stable steps, levels, each cycle's top step;
 // block_leapfrog_removal.cpp: particles removed inside a top step). Private to src/integrate.
 #include <algorithm>
 #include <cmath>

@@ -89,9 +89,10 @@ constexpr Real kNeighbourStepFactor = 4;
 template <int D, class K>
 int SpmhdScheme<D, K>::own_steps_by_slot(Real t, const Real* y, const Real* ydot) {
   if (halo_) throw std::logic_error("SpmhdScheme: per-particle steps are not for a distributed scheme");
-  if (stable_steps(t, y, ydot, courant_steps_, force_steps_) != 0) return 1;  // error_ says why
+  if (prepare_steps(t, y, ydot) != 0) return 1;  // error_ says why
   own_of_slot_.resize(n_);
-  for (std::size_t a = 0; a < n_; ++a) own_of_slot_[a] = std::min(courant_steps_[perm_[a]], force_steps_[perm_[a]]);
+  for (std::size_t a = 0; a < n_; ++a)
+    if (std::isnan(own_of_slot_[a] = own_step(a, ydot))) return 1;
   return 0;
 }
 
@@ -145,23 +146,14 @@ int SpmhdScheme<D, K>::active_stable_dt(Real t, const Real* y, const Real* ydot,
                                         Real* dt) {
   if (active.size() >= num_particles()) return particle_stable_dt(t, y, ydot, dt);
   const ServeOnly served(serve_particles_, active);  // (own steps are read for them and their neighbours)
-  try {
-    if (!opt_.evolve_particles) throw std::logic_error("active_stable_dt: fixed particles");
-    if (prepare(t, y) != 0) return 1;  // error_ says why
-  } catch (...) {
-    error_ = current_exception_message("SpmhdScheme::active_stable_dt");
-    return 1;
-  }
+  if (prepare_steps(t, y, ydot) != 0) return 1;  // error_ says why
   // Own steps of the slots read only (the active ones, their neighbours within reach, the solved
   // ones: most particles are read by no active row), each at its first read.
   own_of_slot_.assign(n_, std::numeric_limits<Real>::quiet_NaN());
   bool finite = true;
   const auto own = [&](std::size_t b) {
     Real& step = own_of_slot_[b];
-    if (std::isnan(step)) {
-      step = std::min(courant_step(b, v_.data()), opt_.self_gravity ? force_step(b, ydot) : std::numeric_limits<Real>::infinity());
-      finite = finite && !std::isnan(step);  // (courant_step names the particle in error_)
-    }
+    if (std::isnan(step)) finite = !std::isnan(step = own_step(b, ydot)) && finite;  // (a NaN named in error_)
     return step;
   };
   constexpr Real inf = std::numeric_limits<Real>::infinity();

@@ -69,35 +69,48 @@ Real SpmhdScheme<D, K>::max_stable_dt(Real t, const Real* y, const Real* ydot) n
 }
 
 template <int D, class K>
-int SpmhdScheme<D, K>::stable_steps(Real t, const Real* y, const Real* ydot, std::vector<Real>& courant,
-                                     std::vector<Real>& force) noexcept {
+Real SpmhdScheme<D, K>::own_step(std::size_t a, const Real* ydot) {
+  const Real force = opt_.self_gravity ? force_step(a, ydot) : std::numeric_limits<Real>::infinity();
+  return std::min(courant_step(a, v_.data()), force);  // (NaN if the Courant step is)
+}
+
+template <int D, class K>
+int SpmhdScheme<D, K>::prepare_steps(Real t, const Real* y, const Real*& ydot) noexcept {
   try {
-    if (!opt_.evolve_particles) throw std::logic_error("stable_steps: fixed particles");
+    if (!opt_.evolve_particles) throw std::logic_error("per-particle steps: fixed particles");
     if (opt_.self_gravity && !ydot) {
       if (evaluate(t, y) != 0) return 1;
       ydot = scratch_.data();
-    } else if (prepare(t, y) != 0) {
-      return 1;
+      return 0;
     }
-    const Real* v = v_.data();  // in slot order (prepare)
-    courant.assign(n_, std::numeric_limits<Real>::infinity());
-    force.assign(n_, std::numeric_limits<Real>::infinity());
-    for (std::size_t a = 0; a < n_; ++a) {
-      courant[perm_[a]] = courant_step(a, v);
-      if (std::isnan(courant[perm_[a]])) return 1;
-      if (opt_.self_gravity) force[perm_[a]] = force_step(a, ydot);
-    }
-    return 0;
+    return prepare(t, y);  // error_ says why
   } catch (...) {
     error_ = current_exception_message("SpmhdScheme::stable_steps");
     return 1;
   }
 }
 
+template <int D, class K>
+int SpmhdScheme<D, K>::stable_steps(Real t, const Real* y, const Real* ydot, std::vector<Real>& courant,
+                                     std::vector<Real>& force) noexcept {
+  if (prepare_steps(t, y, ydot) != 0) return 1;
+  const Real* v = v_.data();  // in slot order (prepare)
+  courant.assign(n_, std::numeric_limits<Real>::infinity());
+  force.assign(n_, std::numeric_limits<Real>::infinity());
+  for (std::size_t a = 0; a < n_; ++a) {
+    courant[perm_[a]] = courant_step(a, v);
+    if (std::isnan(courant[perm_[a]])) return 1;
+    if (opt_.self_gravity) force[perm_[a]] = force_step(a, ydot);
+  }
+  return 0;
+}
+
 #define SPHARK_SPMHD_TIME_STEP(D, K)                                                                        \
   template Real SpmhdScheme<D, K>::finite_courant_step(std::size_t, const Real*) const;                  \
   template Real SpmhdScheme<D, K>::courant_step(std::size_t, const Real*);                               \
   template Real SpmhdScheme<D, K>::max_stable_dt(Real, const Real*, const Real*) noexcept;              \
+  template Real SpmhdScheme<D, K>::own_step(std::size_t, const Real*);                                  \
+  template int SpmhdScheme<D, K>::prepare_steps(Real, const Real*, const Real*&) noexcept;               \
   template int SpmhdScheme<D, K>::stable_steps(Real, const Real*, const Real*, std::vector<Real>&,      \
                                                std::vector<Real>&) noexcept;
 #define SPHARK_SPMHD_TIME_STEP_2D_3D(K) SPHARK_SPMHD_TIME_STEP(2, K<2>) SPHARK_SPMHD_TIME_STEP(3, K<3>)

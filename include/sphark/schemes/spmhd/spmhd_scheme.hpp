@@ -242,6 +242,10 @@ class SpmhdScheme final : public OdeSystem {
   // C h / v_sig of one slot, v: velocities in slot order (v_) or null (+inf without a signal speed;
   // NaN, with error_, for a non-finite one)
   Real courant_step(std::size_t slot, const Real* v);  // finite_courant_step; a NaN named in error_
+  Real own_step(std::size_t slot, const Real* ydot);   // min(courant_step, force_step with self-gravity)
+  // prepare(t, y) for the per-particle steps, and the accelerations they read: ydot, or with
+  // self-gravity and no ydot f(t, y) evaluated (ydot then points to it); nonzero with error_ set.
+  int prepare_steps(Real t, const Real* y, const Real*& ydot) noexcept;
   Real finite_courant_step(std::size_t slot, const Real* v) const;  // NaN where a speed or h is not finite
 
   // The per-slot array `slots` (comps per particle) in particle order, cached per RHS.
@@ -321,7 +325,6 @@ class SpmhdScheme final : public OdeSystem {
   std::vector<std::uint32_t> active_slots_;    // rhs_subset: the active gas particles' slots
   std::vector<std::uint32_t> slot_of_;         // slots_of: particle -> slot
   std::vector<std::uint32_t> served_slots_;    // slots_of's answer for the served particles
-  std::vector<Real> courant_steps_, force_steps_;  // particle_stable_dt
   std::vector<Real> own_of_slot_, active_steps_;   // active_stable_dt
   std::vector<std::uint32_t> limiter_near_;        // its neighbours within reach of one active row
   // The interacting neighbours of each row of the last subset force pass (rows in active_slots_'s
