@@ -29,18 +29,24 @@ Real snap_to_grid(Real t_end, Real every) {
 }
 
 // The stepper continues from the state after_step returned: its carried data moved along (given,
-// or by the reordering entry_source), else evaluated afresh. Present but empty (a rank left with
-// no particles) still counts as given: every rank of a distributed run must take the same branch.
+// or following entry_source when every new entry has a source), else evaluated afresh. Present
+// but empty (a rank left with no particles) still counts as given: every rank of a distributed
+// run must take the same branch.
 void resize_stepper(Stepper& stepper, TimeLoopHooks::Resize& r, StateLayout& layout, std::vector<Real>& y) {
   if (r.y.size() != r.layout.size()) throw std::logic_error("after_step: the new state does not fit its layout");
+  const std::size_t old_size = layout.size();
   layout = std::move(r.layout);
   y = std::move(r.y);
   std::optional<std::vector<Real>> carried = std::move(r.carried);
   if (carried && carried->size() != y.size()) throw std::logic_error("after_step: carried data that does not fit the new state");
   if (!r.entry_source.empty()) {
-    if (r.entry_source.size() != y.size()) throw std::logic_error("after_step: a reordering of another size");
+    if (r.entry_source.size() != y.size()) throw std::logic_error("after_step: entry sources that do not fit the new state");
     const std::vector<Real> old = stepper.carried_data();
-    if (old.size() == y.size()) {
+    const bool all_sourced = std::all_of(r.entry_source.begin(), r.entry_source.end(),
+                                         [&](std::size_t e) { return e != kNoEntrySource; });
+    for (std::size_t e : r.entry_source)
+      if (e != kNoEntrySource && e >= old_size) throw std::logic_error("after_step: an entry source out of range");
+    if (old.size() == old_size && all_sourced) {
       carried.emplace(y.size());
       for (std::size_t k = 0; k < y.size(); ++k) (*carried)[k] = old[r.entry_source[k]];
     }

@@ -209,7 +209,7 @@ std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& s, Real t, cons
     }
     if (!fed.removed.empty()) {
       log.accreted_particles += static_cast<long>(fed.removed.size());
-      return apply(s, y, fed);
+      return apply_with_sources(s, y, fed);
     }
   }
   // Creation needs the densities at y: evaluated only when the last evaluation's densest particle
@@ -229,7 +229,7 @@ std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& s, Real t, cons
   ++log.creations;
   if (test.forced) ++log.forced_creations;
   if (log.first_creation_time < 0) log.first_creation_time = t;
-  return apply(s, y, created);
+  return apply_with_sources(s, y, created);
 }
 
 }  // namespace sphark

@@ -99,9 +99,11 @@ struct TimeLoopHooks {
     StateLayout layout;
     std::vector<Real> y;
     std::vector<Real> atol;  // per entry of the new state when the run uses per-entry tolerances
-    // A reordering (same entries, another order): new entry k is old entry entry_source[k]; the
-    // stepper's carried data (Stepper::carried_data) then moves with the entries. Empty: the
-    // stepper starts afresh at y (Stepper::resize), unless `carried` is given.
+    // Where the new entries came from (a reordering, or a removal such as accretion): new entry k
+    // continues old entry entry_source[k]; the stepper's carried data (Stepper::carried_data)
+    // then moves with the entries, unless an entry has none (kNoEntrySource: a new sink's). Empty,
+    // or an entry without a source: the stepper starts afresh at y (Stepper::resize), unless
+    // `carried` is given.
     std::vector<std::size_t> entry_source;
     // The carried data of the new state, one value per entry (e.g. migrated with it; a rank left
     // without particles passes an empty one: every rank of a distributed run the same choice).

@@ -58,6 +58,10 @@ std::optional<TimeLoopHooks::Resize> events_among_active(SpmhdScheme<3>& scheme,
 std::vector<std::size_t> creation_clump_to_wake(const SpmhdScheme<3>& scheme, const Real* y,
                                                 const std::vector<std::size_t>& active, const SinkParams& params);
 
+// The events at a step's end (TimeLoopHooks::after_step): the new layout and state with
+// entry_source, as events_among_active's, so that a leapfrog's next kick uses the derivatives
+// of the kept entries (no evaluation after an accretion, as in the block steps and in Phantom);
+// a new sink's entries have none (the stepper then evaluates afresh).
 std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& scheme, Real t, const Real* y, const SinkParams& params,
                                                  SinkEventLog& log);
 
