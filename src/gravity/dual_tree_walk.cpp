@@ -38,6 +38,12 @@ Real mass_opening_angle(Real theta_0, Real mass_ratio) {
   return t;
 }
 
+Real DualTreeWalk::opening_angle(OpeningMemo& memo, Real theta_0, Real root_mass, Real mass) {
+  if (memo.mass != mass || memo.root_mass != root_mass || memo.theta_0 != theta_0)
+    memo = {mass, root_mass, theta_0, mass_opening_angle(theta_0, root_mass / mass)};
+  return memo.theta_c;
+}
+
 DualTreeWalk::Step DualTreeWalk::classify(std::uint32_t a, std::uint32_t b) const {
   const WalkNode &A = nodes_[a], &B = nodes_[b];
   if (a == b) return A.leaf() ? Step::Near : Step::Self;
@@ -125,7 +131,7 @@ void DualTreeWalk::expand_breadth_first(Found& out) {
 }
 
 std::size_t DualTreeWalk::capacity() const {
-  std::size_t c = queue_.capacity() + found_.capacity() + cursor_.capacity() + nodes_.capacity();
+  std::size_t c = queue_.capacity() + found_.capacity() + cursor_.capacity() + nodes_.capacity() + memo_.capacity();
   for (const Found& f : found_) c += f.far.capacity() + f.near.capacity();
   for (const PartnerLists* l : {&far_, &near_}) c += l->start.capacity() + l->partner.capacity();
   return c;
@@ -139,13 +145,14 @@ void DualTreeWalk::walk(const GravityTree& tree, Real theta, GravityOpening open
   const std::size_t capacity_before = capacity();
   const std::vector<TreeNode>& tn = tree.nodes();
   nodes_.resize(tn.size());
+  memo_.resize(tn.size());
   const auto nn = static_cast<std::ptrdiff_t>(tn.size());
   const Real root_mass = tn.empty() ? 0 : tn[0].mass;
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < nn; ++i) {
     const TreeNode& t = tn[i];
     const Real theta_c = opening == GravityOpening::Fixed || !(t.mass > 0) ? theta
-                                                                          : mass_opening_angle(theta, root_mass / t.mass);
+                                                                          : opening_angle(memo_[i], theta, root_mass, t.mass);
     nodes_[i] = {{t.com[0], t.com[1], t.com[2]}, t.radius, t.reach, t.radius / theta_c, t.count(), t.left, t.right};
   }
   if (found_.empty()) found_.resize(1 + kJobs);

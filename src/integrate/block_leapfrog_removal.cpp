@@ -21,8 +21,8 @@ void BlockLeapfrogStepper::remove(Real t, std::vector<std::size_t>& active) {
 
 // The new state of a removal: every per-entry and per-particle array follows the entries'
 // sources; `active` keeps its survivors. A particle whose entries have no source (a sink made of
-// removed ones) is new: it is evaluated at (t, y) and joins the active set on the deepest of its
-// levels (the next rebin bins it).
+// removed ones) is new: it is evaluated at (t, y), takes its stable step there and joins the
+// active set on the deepest of its levels (the next rebin bins it).
 void BlockLeapfrogStepper::take(Real t, StepperOptions::Removal& r, std::vector<std::size_t>& active) {
   const std::size_t n_old = n_;
   const std::vector<std::size_t> owner_old = owner_;
@@ -70,7 +70,9 @@ void BlockLeapfrogStepper::take(Real t, StepperOptions::Removal& r, std::vector<
     if (was_active[source[p]]) active.push_back(p);
   }
   level_.swap(level), start_.swap(start), stable_.swap(stable);
-  if (!newcomers.empty()) evaluate(t, newcomers);
+  if (newcomers.empty()) return;
+  evaluate(t, newcomers);
+  update_stable_steps(t, newcomers);
 }
 
 }  // namespace sphark::detail

@@ -24,9 +24,10 @@
 // Particles removed inside the cycle (StepperOptions::remove_active: gas accreted onto a sink,
 // or made into one, among the active particles; Phantom makes sinks so, ptmass.F90 "CHECK 3"):
 // after an event's kicks the system may remove some of that event's active particles,
-// whose every entry is then at the event's time; the others' entries and derivatives, levels
-// and step starts move with them, a new particle (a sink) is evaluated there, and the cycle goes
-// on. No other evaluation is added: the next kicks use the last derivatives (Phantom does not
+// whose every entry is then at the event's time; the others' entries and derivatives, levels,
+// step starts and stable steps (taken at the evaluation, before the removal) move with them, a
+// new particle (a sink) is evaluated there and takes its stable step, and the cycle goes on. No
+// other evaluation is added: the next kicks use the last derivatives (Phantom does not
 // re-evaluate after accretion either).
 // StepperOptions::wake_next names particles to be woken at the next event (a sink candidate's
 // neighbourhood, which must be all active for the sink to be made).
@@ -290,12 +291,12 @@ void BlockLeapfrogStepper::cycle(Real t_out) {
     end_kicks(ending, woken, tick);
     if (opts_.velocity_tolerance > 0) correct(t, active, ending, woken, tick);
     if (last) break;
+    update_stable_steps(t, active);  // at the evaluated state, before a removal changes it
     remove(t, active);
     wake_next_.clear();
     if (opts_.wake_next)
       for (std::size_t i : opts_.wake_next(t, w_.data(), active)) wake_next_.push_back(i);
     std::sort(wake_next_.begin(), wake_next_.end());
-    update_stable_steps(t, active);
     assign_levels(t, active, tick, false);
     kick(active, 0.5, w_);  // start of their next steps
   }

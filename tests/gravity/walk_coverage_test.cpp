@@ -103,3 +103,27 @@ TEST(DualTreeWalk, MassDependentOpeningCoversEveryPairOnceAndMutually) {
       expect_exact_mutual_cover(clumped, leaf, theta_0, GravityOpening::Mass);
     }
 }
+
+// A walker remembers each node's mass-dependent opening angle between walks; a walk after the
+// masses (or theta_0) changed lists exactly what a new walker lists, and the change mattered.
+TEST(DualTreeWalk, RememberedOpeningAnglesFollowTheMassesAndTheta) {
+  SphereParticles p = random_sphere(SphereProfile::InverseR, 1500, 1, 1, 1.2, 23);
+  const auto lists = [](const DualTreeWalk& w) {
+    return std::vector<std::vector<std::uint32_t>>{w.far().start, w.far().partner, w.near().start, w.near().partner};
+  };
+  GravityTree tree;
+  tree.build(p.sources(), 2, 8);
+  DualTreeWalk kept;
+  kept.walk(tree, 0.35, GravityOpening::Mass);
+  const auto first = lists(kept);
+  for (std::size_t a = 0; a < p.size(); a += 3) p.m[a] *= 40;  // a third of the particles 40x heavier
+  tree.build(p.sources(), 2, 8);
+  for (Real theta_0 : {0.35, 0.5}) {
+    SCOPED_TRACE(theta_0);
+    kept.walk(tree, theta_0, GravityOpening::Mass);
+    DualTreeWalk fresh;
+    fresh.walk(tree, theta_0, GravityOpening::Mass);
+    EXPECT_EQ(lists(kept), lists(fresh));
+    EXPECT_NE(lists(kept), first);
+  }
+}

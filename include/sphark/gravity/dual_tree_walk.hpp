@@ -81,7 +81,16 @@ class DualTreeWalk {
 
   bool wanted(NodePair p) const { return !targets_ || (*targets_)[p.a] || (*targets_)[p.b]; }
 
+  // A node's mass-dependent opening angle and what it was computed from: the same again while
+  // the node's mass, the root's and theta_0 are (a walk per event of block steps, the tree
+  // rebuilt in between, finds most nodes' masses unchanged).
+  struct OpeningMemo {
+    Real mass = -1, root_mass = -1, theta_0 = -1, theta_c = 0;
+  };
+  static Real opening_angle(OpeningMemo& memo, Real theta_0, Real root_mass, Real mass);
+
   std::vector<WalkNode> nodes_;
+  std::vector<OpeningMemo> memo_;  // per node
   const std::vector<std::uint8_t>* targets_ = nullptr;  // during walk()
   std::vector<NodePair> queue_;
   std::vector<Found> found_;  // [0]: found while expanding; [1 + j]: job j
