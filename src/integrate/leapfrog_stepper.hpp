@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -75,16 +76,18 @@ class LeapfrogStepper final : public Stepper {
     return s;
   }
   std::string failure_reason() const override { return failure_; }
-  std::vector<Real> resume_data() const override {  // dy_ then t_lost_
+  std::vector<Real> resume_data() const override {  // dy_, t_lost_, the planned stable step (NaN: none)
     if (!started_ || failed_) return {};
     std::vector<Real> d = dy_;
     d.push_back(t_lost_);
+    d.push_back(planned_stable_ ? *planned_stable_ : std::numeric_limits<Real>::quiet_NaN());
     return d;
   }
   std::vector<int> roots_found() const override { return roots_; }
 
   // The new state at t_; the next kick uses `carried` (the derivative moved with its entries)
-  // or, without it, the RHS at the new state. Time, step and Kahan compensation are kept.
+  // or, without it, the RHS at the new state. Time, step and Kahan compensation are kept, and
+  // with `carried` the stable step planned at the end of the last step (plan_next_step).
   void resize(const Resized& state) override {
     require_everywhere(opts_.communicator, !(system_.size() > 0 && state.y == nullptr), "resize: no state");
     n_ = system_.size();
@@ -96,8 +99,12 @@ class LeapfrogStepper final : public Stepper {
       return;
     }
     if (failed_) return;
-    if (state.carried) std::copy(state.carried, state.carried + n_, dy_.begin());
-    else if (call("rhs", t_, [&] { return system_.rhs(t_, y_.data(), dy_.data()); }) != 0) return fail("RHS after resize");
+    if (state.carried) {
+      std::copy(state.carried, state.carried + n_, dy_.begin());
+    } else {
+      planned_stable_.reset();
+      if (call("rhs", t_, [&] { return system_.rhs(t_, y_.data(), dy_.data()); }) != 0) return fail("RHS after resize");
+    }
     if (!g_.empty() && call("roots", t_, [&] { return system_.roots(t_, y_.data(), g_.data()); }) != 0)
       fail("root functions after resize");
   }
@@ -116,11 +123,12 @@ class LeapfrogStepper final : public Stepper {
   void start() {
     started_ = true;
     if (resume_pending_ && !opts_.resume_data.empty()) {  // a restart: the derivative the interrupted run would use
-      if (opts_.resume_data.size() != n_ + 1)
-        return fail("resume_data has " + std::to_string(opts_.resume_data.size()) + " values, expected " +
-                    std::to_string(n_ + 1));
-      std::copy(opts_.resume_data.begin(), opts_.resume_data.end() - 1, dy_.begin());
-      t_lost_ = opts_.resume_data.back();
+      const std::size_t size = opts_.resume_data.size();  // (n_ + 1: written before the planned step)
+      if (size != n_ + 1 && size != n_ + 2)
+        return fail("resume_data has " + std::to_string(size) + " values, expected " + std::to_string(n_ + 2));
+      std::copy(opts_.resume_data.begin(), opts_.resume_data.begin() + static_cast<std::ptrdiff_t>(n_), dy_.begin());
+      t_lost_ = opts_.resume_data[n_];
+      if (size == n_ + 2 && !std::isnan(opts_.resume_data[n_ + 1])) planned_stable_ = opts_.resume_data[n_ + 1];
     } else if (call("rhs", t_, [&] { return system_.rhs(t_, y_.data(), dy_.data()); }) != 0) {
       fail("initial RHS");
     }
@@ -131,11 +139,12 @@ class LeapfrogStepper final : public Stepper {
   Real choose_dt() {
     Real dt = opts_.fixed_dt;
     if (!(dt > 0)) {
-      // the derivative at y_ that the next kick uses (FSAL: from the predictor of the last step)
-      dt = opts_.cfl_safety * system_.max_stable_dt(t_, y_.data(), dy_.data());
+      const Real stable = planned_stable_ ? *planned_stable_ : system_.max_stable_dt(t_, y_.data(), dy_.data());
+      const std::string why = planned_stable_ ? planned_error_ : system_.last_error();
+      planned_stable_.reset();
+      dt = opts_.cfl_safety * stable;
       if (opts_.max_dt > 0) dt = std::min(dt, opts_.max_dt);
       if (!(dt > 0) || !std::isfinite(dt)) {
-        const std::string why = system_.last_error();
         fail("no usable step size (cfl_safety * max_stable_dt = " + at_time(dt) + ")" + (why.empty() ? "" : ": " + why));
         return dt;
       }
@@ -230,6 +239,18 @@ class LeapfrogStepper final : public Stepper {
     }
     ++stats_.steps;
     stats_.last_dt = dt;
+    plan_next_step();
+  }
+
+  // max_stable_dt at the accepted state, with the derivative the next kick uses (FSAL: from the
+  // predictor of the last step), for the next choose_dt: taken here, before the time loop's
+  // after_step may remove particles (an accretion), as Phantom takes the next step from the
+  // force pass before it accretes; a resize that carries the derivatives keeps it.
+  void plan_next_step() {
+    planned_stable_.reset();
+    if (opts_.fixed_dt > 0) return;
+    planned_stable_ = system_.max_stable_dt(t_, y_.data(), dy_.data());
+    planned_error_ = system_.last_error();
   }
 
   void finish(Real* y, Real& t) const {
@@ -276,6 +297,8 @@ class LeapfrogStepper final : public Stepper {
   bool started_ = false, failed_ = false, interrupted_ = false;
   int steps_below_floor_ = 0;  // consecutive steps below StepperOptions::step_floor
   bool resume_pending_ = true;  // opts_.resume_data still applies (no resize before the start)
+  std::optional<Real> planned_stable_;  // plan_next_step's max_stable_dt, until choose_dt takes it
+  std::string planned_error_;
 };
 
 }  // namespace sphark::detail

@@ -78,13 +78,15 @@ void TimeLoop::restore(const Checkpoint& c) {
 }
 
 namespace {
-// Stepper resume data of one value per state entry followed by one more (the leapfrog's: its
-// derivative, then a time) apart: the per-entry part, and the tail. Throws unless it is so.
-std::pair<std::vector<Real>, Real> per_entry_and_tail(const std::vector<Real>& data, std::size_t entries,
-                                                      const char* where) {
-  if (data.size() != entries + 1)
-    throw std::runtime_error(std::string(where) + ": the stepper's resume data is not one value per state entry + 1");
-  return {std::vector<Real>(data.begin(), data.end() - 1), data.back()};
+// Stepper resume data of one value per state entry followed by a tail of one or two values the
+// same on every rank (the leapfrog's: its derivative, then a time and its planned stable step)
+// apart: the per-entry part, and the tail. Throws unless it is so.
+std::pair<std::vector<Real>, std::vector<Real>> per_entry_and_tail(const std::vector<Real>& data, std::size_t entries,
+                                                                   const char* where) {
+  if (data.size() != entries + 1 && data.size() != entries + 2)
+    throw std::runtime_error(std::string(where) + ": the stepper's resume data is not one value per state entry + 1 or 2");
+  const auto split = data.begin() + static_cast<std::ptrdiff_t>(entries);
+  return {std::vector<Real>(data.begin(), split), std::vector<Real>(split, data.end())};
 }
 }  // namespace
 
@@ -103,7 +105,7 @@ void TimeLoop::restore_share(const Checkpoint& c) {
   if (c.stepper_data.empty()) return;
   const auto [per_entry, tail] = per_entry_and_tail(c.stepper_data, c.y.size(), "--restart");
   opts_.resume_data = share_of(whole, per_entry, ids);
-  opts_.resume_data.push_back(tail);
+  opts_.resume_data.insert(opts_.resume_data.end(), tail.begin(), tail.end());
 }
 
 // The system's resume data (OdeSystem::resume_shape: per-particle blocks, then a tail) of the
@@ -144,7 +146,7 @@ void TimeLoop::gather_system_data(Checkpoint& c, const std::vector<std::int64_t>
 void TimeLoop::gather_whole_run(Checkpoint& c) {
   const Communicator& comm = opts_.communicator;
   comm.check(layout_.species().size() == 1, "checkpoints of distributed runs hold one species");
-  comm.check(c.stepper_data.empty() || c.stepper_data.size() == y_.size() + 1,
+  comm.check(c.stepper_data.empty() || c.stepper_data.size() == y_.size() + 1 || c.stepper_data.size() == y_.size() + 2,
              "checkpoints of distributed runs: this stepper's resume data is not per state entry");
   const std::vector<std::int64_t> ids = hooks_.global_ids();
   const std::vector<int> components = field_components(layout_);
@@ -155,7 +157,7 @@ void TimeLoop::gather_whole_run(Checkpoint& c) {
   if (c.stepper_data.empty()) return;
   const auto [per_entry, tail] = per_entry_and_tail(c.stepper_data, y_.size(), "checkpoint");
   c.stepper_data = gather_particles(comm, ids, per_entry, components);
-  if (comm.rank() == 0) c.stepper_data.push_back(tail);
+  if (comm.rank() == 0) c.stepper_data.insert(c.stepper_data.end(), tail.begin(), tail.end());
 }
 
 void TimeLoop::save(Real time) {

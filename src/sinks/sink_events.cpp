@@ -213,9 +213,11 @@ std::optional<TimeLoopHooks::Resize> sink_events(SpmhdScheme<3>& s, Real t, cons
     }
   }
   // Creation needs the densities at y: evaluated only when the last evaluation's densest particle
-  // came within a factor 10 of rho_sink (a step changes the density by a few per cent at most).
+  // came within a factor 10 of rho_sink (a step changes the density by a few per cent at most),
+  // and not again when the last RHS evaluated every particle at y's positions (a leapfrog's step
+  // ends so; its div v is then of the predicted velocities, as at the block steps' events).
   if (s.rho().empty() || *std::max_element(s.rho().begin(), s.rho().end()) < 0.1 * params.rho_sink) return std::nullopt;
-  const GasArrays gas = gas_of(s, t, y);
+  const GasArrays gas = s.fully_evaluated_at_positions_of(y) ? gas_as_evaluated(s, y) : gas_of(s, t, y);
   SinkCreationTest test;
   const SinkUpdate created = create_sink_if_allowed(gas.view, sinks, params, &test);
   if (created.removed.empty()) {

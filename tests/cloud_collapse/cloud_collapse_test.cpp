@@ -389,6 +389,43 @@ TEST(CloudSubsets, ASecondCallAtTheSameStateSkipsItsListCheckButNotALaterTime) {
   EXPECT_LT(diff / scale, 10 * s.options().h_tolerance);
 }
 
+// What the sink creation checks may read without evaluating again (SpmhdScheme::
+// fully_evaluated_at_positions_of): the last rhs() evaluated every particle at y's positions.
+// Other velocities (a leapfrog's kicked ones) do not matter, nor a step size taken there; a
+// moved particle, a subset evaluation or a removal does. The h, rho and potentials are then those
+// of an evaluation at y itself, bit for bit.
+TEST(CloudSubsets, TheLastFullEvaluationServesItsPositionsOnly) {
+  CloudCollapseParams p = small(1500);
+  CloudCollapse cloud(p), fresh(p);
+  SpmhdScheme<3>& s = cloud.scheme;
+  std::vector<Real> y = cloud.y0, out(y.size());
+  const std::size_t x0 = s.layout().offset(Field::Position), v0 = s.layout().offset(Field::Velocity), n = s.particles();
+  EXPECT_FALSE(s.fully_evaluated_at_positions_of(y.data()));  // nothing evaluated yet
+  ASSERT_EQ(s.rhs(0, y.data(), out.data()), 0) << s.last_error();
+  std::vector<Real> kicked = y;
+  for (std::size_t k = 0; k < 3 * n; ++k) kicked[v0 + k] = -0.5 * y[x0 + k];
+  ASSERT_TRUE(std::isfinite(s.max_stable_dt(0, kicked.data(), out.data())));  // a prepare at other velocities
+  EXPECT_TRUE(s.fully_evaluated_at_positions_of(kicked.data()));
+  ASSERT_EQ(fresh.scheme.evaluate(0, kicked.data()), 0);
+  EXPECT_EQ(s.h(), fresh.scheme.h());
+  EXPECT_EQ(s.rho(), fresh.scheme.rho());
+  EXPECT_EQ(s.potential(), fresh.scheme.potential());
+  std::vector<Real> moved = y;
+  moved[x0 + 3 * 17 + 1] += 1e-9;
+  EXPECT_FALSE(s.fully_evaluated_at_positions_of(moved.data()));
+  std::vector<std::size_t> active;
+  for (std::size_t i = 3; i < n; i += 7) active.push_back(i);
+  ASSERT_EQ(s.rhs_subset(0, y.data(), active, out.data()), 0) << s.last_error();
+  EXPECT_FALSE(s.fully_evaluated_at_positions_of(y.data()));
+  ASSERT_EQ(s.rhs(0, moved.data(), out.data()), 0) << s.last_error();
+  EXPECT_TRUE(s.fully_evaluated_at_positions_of(moved.data()));
+  EXPECT_FALSE(s.fully_evaluated_at_positions_of(y.data()));
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 1; i < n; ++i) kept.push_back(i);
+  s.change_particles(kept, 0);
+  EXPECT_FALSE(s.fully_evaluated_at_positions_of(moved.data()));
+}
+
 // The lists' skin mostly one length for all (SpmhdOptions::skin_own_fraction 0.1, the scene's
 // default) instead of in proportion to each h: the same derivatives bit for bit, at the first
 // call and after the particles moved (lists reused or rebuilt), from shorter lists once they are

@@ -5,9 +5,12 @@
 // leapfrog's next kick uses the derivatives moved with their entries when the hook names every
 // new entry's source (no evaluation: the oscillators' forces are their own, the same values), and
 // is evaluated afresh at the resized state when it names none or an entry has none (a new
-// particle). The checkpoint written at the end carries the new particle count.
+// particle). The adaptive leapfrog takes each step's max_stable_dt right after the step before
+// (before after_step): kept across a resize that carries the derivatives, taken again after any
+// other. The checkpoint written at the end carries the new particle count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -45,6 +48,12 @@ class Oscillators final : public OdeSystem {
     }
     return 0;
   }
+  // 0.05 / the largest frequency (the removed particle 0 has the smallest: the same before and after)
+  Real max_stable_dt(Real, const Real*, const Real*) override {
+    ++stable_dt_calls;
+    return 0.05 / std::sqrt(*std::max_element(omega2_.begin(), omega2_.end()));
+  }
+  long stable_dt_calls = 0;
   std::size_t position_offset() const override { return 0; }
   std::size_t velocity_offset() const override { return layout_.particles(); }
   std::size_t position_size() const override { return layout_.particles(); }
@@ -59,6 +68,7 @@ struct Outcome {
   std::size_t particles;
   std::size_t checkpoint_particles;
   long rhs_evals;
+  long stable_dt_calls;
 };
 
 // How the hook hands over the state without particle 0: without entry sources, with them, or
@@ -70,7 +80,7 @@ Outcome run(const std::string& method, Removal removal, const std::filesystem::p
   std::vector<Real> y0(sys.size(), 0);
   for (std::size_t i = 0; i < 4; ++i) y0[i] = 1.0 + 0.25 * static_cast<Real>(i);
   StepperOptions o;
-  o.method = method;
+  o.method = method == "leapfrog adaptive" ? "leapfrog" : method;
   o.rtol = 1e-9;
   o.atol = {1e-12};
   if (method == "leapfrog") o.fixed_dt = 1.0 / 64;
@@ -106,12 +116,12 @@ Outcome run(const std::string& method, Removal removal, const std::filesystem::p
   const std::size_t skip = n == 4 ? 1 : 0;
   for (std::size_t i = skip; i < n; ++i) survivors.push_back(y[i]);
   for (std::size_t i = skip; i < n; ++i) survivors.push_back(y[n + i]);
-  return {survivors, n, load_checkpoint(dir / "c.bin").particles(), r.stats.rhs_evals};
+  return {survivors, n, load_checkpoint(dir / "c.bin").particles(), r.stats.rhs_evals, sys.stable_dt_calls};
 }
 }  // namespace
 
 TEST(AfterStep, ARunThatLosesAParticleContinuesAsAnUninterruptedOne) {
-  for (const std::string method : {"leapfrog", "ARKODE_DORMAND_PRINCE_7_4_5"}) {
+  for (const std::string method : {"leapfrog", "leapfrog adaptive", "ARKODE_DORMAND_PRINCE_7_4_5"}) {
     SCOPED_TRACE(method);
     TempDir a;
     const Outcome whole = run(method, Removal::none, a.path());
@@ -122,11 +132,15 @@ TEST(AfterStep, ARunThatLosesAParticleContinuesAsAnUninterruptedOne) {
       EXPECT_EQ(cut.particles, 3u);
       EXPECT_EQ(cut.checkpoint_particles, 3u);  // the checkpoint carries the new count
       ASSERT_EQ(whole.y.size(), cut.y.size());
-      if (method == "leapfrog") {
+      if (method != "ARKODE_DORMAND_PRINCE_7_4_5") {
         EXPECT_EQ(std::memcmp(whole.y.data(), cut.y.data(), whole.y.size() * sizeof(Real)), 0);
-        // the fixed-step leapfrog: one evaluation per step, one more to start, one more after a
-        // removal unless every entry's derivative moved with it
-        EXPECT_EQ(cut.rhs_evals, whole.rhs_evals + (removal == Removal::with_sources ? 0 : 1));
+        // one evaluation per step, one more to start, one more after a removal unless every
+        // entry's derivative moved with it; so too the adaptive one's stable steps
+        const long again = removal == Removal::with_sources ? 0 : 1;
+        EXPECT_EQ(cut.rhs_evals, whole.rhs_evals + again);
+        if (method == "leapfrog adaptive") {
+          EXPECT_EQ(cut.stable_dt_calls, whole.stable_dt_calls + again);
+        }
       } else {
         for (std::size_t k = 0; k < whole.y.size(); ++k) EXPECT_NEAR(cut.y[k], whole.y[k], 1e-7);
       }

@@ -69,6 +69,7 @@ void SpmhdScheme<D, K>::set_particles(std::vector<std::int64_t> ids, std::vector
   built_ = false;
   ++version_;
   evaluated_version_ = -1;
+  full_rhs_at_x_ = false;
 }
 
 template <int D, class K>
@@ -102,6 +103,7 @@ void SpmhdScheme<D, K>::restore_migrated(std::span<const Real> data) {
   built_ = false;
   ++version_;
   evaluated_version_ = -1;
+  full_rhs_at_x_ = false;
 }
 
 template <int D, class K>

@@ -149,6 +149,7 @@ void SpmhdScheme<D, K>::resume(std::span<const Real> data) {
   built_ = false;
   ++version_;
   evaluated_version_ = -1;
+  full_rhs_at_x_ = false;
 }
 
 // Every per-particle buffer for n_ particles (h_ and x_ are set by the caller), slots = particles
@@ -283,6 +284,7 @@ int SpmhdScheme<D, K>::prepare(Real t, const Real* y) {
     gather(y + layout_.offset(Field::Position), D, x_from_state_, n_);
     const bool moved = !built_ || x_from_state_ != x_;
     if (moved) {
+      full_rhs_at_x_ = false;
       std::copy(x_from_state_.begin(), x_from_state_.end(), x_.begin());
       solved_at_x_.assign(n_, 0);
     }
@@ -340,7 +342,18 @@ int SpmhdScheme<D, K>::rhs(Real t, const Real* y, Real* ydot) {  // may throw: t
   force_pass(y, ydot);
   if (opt_.self_gravity) gravity_pass(ydot);
   if (opt_.sink_particles) sink_pass(y, ydot);
+  full_rhs_at_x_ = !halo_ && opt_.evolve_particles;
   return 0;
+}
+
+template <int D, class K>
+bool SpmhdScheme<D, K>::fully_evaluated_at_positions_of(const Real* y) const {
+  if (!full_rhs_at_x_ || x_.size() != D * n_) return false;
+  const Real* x = y + layout_.offset(Field::Position);
+  for (std::size_t s = 0; s < n_; ++s)
+    for (int k = 0; k < D; ++k)
+      if (x[D * perm_[s] + k] != x_[D * s + k]) return false;
+  return true;
 }
 
 template <int D, class K>

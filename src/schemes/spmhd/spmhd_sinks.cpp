@@ -77,6 +77,7 @@ void SpmhdScheme<D, K>::change_particles(const std::vector<std::size_t>& kept, s
   built_ = false;
   ++version_;
   evaluated_version_ = -1;
+  full_rhs_at_x_ = false;
 }
 
 // Particles removed (kept: ascending): the others keep their slots' order, their neighbour
@@ -123,6 +124,7 @@ void SpmhdScheme<D, K>::remove_particles(const std::vector<std::size_t>& kept, s
   every_slot_solved_ = all_solved;
   ++version_;
   evaluated_version_ = -1;
+  full_rhs_at_x_ = false;
 }
 
 #define SPHARK_SPMHD_SINKS(D, K)                                   \

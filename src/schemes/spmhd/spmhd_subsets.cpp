@@ -54,6 +54,7 @@ void SpmhdScheme<D, K>::slots_of(std::span<const std::size_t> particles, std::ve
 template <int D, class K>
 int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) {
   if (halo_) throw std::logic_error("SpmhdScheme::rhs_subset: not for a distributed scheme");
+  full_rhs_at_x_ = false;  // (the others' potentials are not computed)
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
   {

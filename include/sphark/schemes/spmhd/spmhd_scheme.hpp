@@ -203,6 +203,10 @@ class SpmhdScheme final : public OdeSystem {
   // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
   // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
   int evaluate(Real t, const Real* y) noexcept;
+  // Whether the last rhs() evaluated every particle at y's positions and no particle moved,
+  // left or came since (serial schemes): h, rho, Omega and the potentials above are y's then,
+  // div v that of the velocities that rhs() saw (a leapfrog's prediction).
+  bool fully_evaluated_at_positions_of(const Real* y) const;
 
  private:
   int prepare(Real t, const Real* y);              // neighbours, density, P, c, B, c_h
@@ -337,6 +341,7 @@ class SpmhdScheme final : public OdeSystem {
   Real least_neighbour_step(std::size_t a, const MinimumImage<D>& image) const;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
   long evaluated_version_ = -1;
+  bool full_rhs_at_x_ = false;  // the last rhs() evaluated every particle at x_ (fully_evaluated_at_positions_of)
   // Per-particle factors of the pair loop (init): one record per particle of what its neighbours
   // read (src/schemes/spmhd/spmhd_pair_row.hpp: x, h, m, 1/h, 1/h^(D+2), rho, P, u, c_f,
   // psi/(Omega rho^2), psi, B, v, M/(Omega rho^2) (seed 000 eq. (8)), B/(Omega rho^2)), and 1/(Omega rho^2).
