@@ -46,10 +46,35 @@ std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t a, const Minimum
   return n;
 }
 
+// Every particle's field when the last rhs() computed it at these positions and no particle
+// moved, left or came since (full_rhs_at_x_: a leapfrog's corrector iteration, diagnostics after
+// a step): the field depends on the positions, masses and h alone, so it is added again as it was
+// (the potentials and energy too, before the sinks' part: sink_pass adds that afresh).
 template <int D, class K>
 void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only) {
   if constexpr (D == 3) {
     ScopedPhase timer(Phase::Forces);
+    const bool same_field = !only && full_rhs_at_x_;
+    if (same_field) {
+      std::copy(self_potential_.begin(), self_potential_.end(), gravity_potential_.begin());
+      potential_energy_ = self_potential_energy_;
+      ++version_;  // (particle-order caches of the potentials)
+    } else {
+      compute_gravity(only);
+    }
+    Real* dv_dt = ydot + layout_.offset(Field::Velocity);
+    const std::size_t rows = only ? only->size() : n_;
+    for (std::size_t i = 0; i < rows; ++i) {
+      const std::size_t p = perm_[only ? (*only)[i] : i];
+      Eigen::Map<Vec<3>>(dv_dt + 3 * p) += Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * p);
+    }
+  }
+}
+
+template <int D, class K>
+void SpmhdScheme<D, K>::compute_gravity(const std::vector<std::uint32_t>* only) {
+  if constexpr (D == 3) {
+    ++gravity_solves_;
     gravity_x_.resize(3 * n_);
     gravity_h_.resize(n_);
     for (std::size_t s = 0; s < n_; ++s) {
@@ -64,13 +89,8 @@ void SpmhdScheme<D, K>::gravity_pass(Real* ydot, const std::vector<std::uint32_t
       sources.wanted = gravity_wanted_.data();
     }
     potential_energy_ = gravity_->compute(sources, gravity_acc_.data(), gravity_potential_.data());
-    Real* dv_dt = ydot + layout_.offset(Field::Velocity);
-    const std::size_t rows = only ? only->size() : n_;
-    for (std::size_t i = 0; i < rows; ++i) {
-      const std::size_t p = perm_[only ? (*only)[i] : i];
-      Eigen::Map<Vec<3>>(dv_dt + 3 * p) += Eigen::Map<const Vec<3>>(gravity_acc_.data() + 3 * p);
-    }
     ++version_;  // the potentials changed (particle-order caches)
+    if (!only) self_potential_.assign(gravity_potential_.begin(), gravity_potential_.end()), self_potential_energy_ = potential_energy_;
   }
 }
 
@@ -92,6 +112,7 @@ Real SpmhdScheme<D, K>::force_step(std::size_t a, const Real* ydot) const {
   template std::size_t SpmhdScheme<D, K>::entries_within_reach(std::size_t, const MinimumImage<D>&,            \
                                                                 std::vector<std::uint32_t>&, Real) const;      \
   template void SpmhdScheme<D, K>::gravity_pass(Real*, const std::vector<std::uint32_t>*); \
+  template void SpmhdScheme<D, K>::compute_gravity(const std::vector<std::uint32_t>*);        \
   template Real SpmhdScheme<D, K>::force_time_step(const Real*) const; \
   template Real SpmhdScheme<D, K>::force_step(std::size_t, const Real*) const;
 #define SPHARK_SPMHD_GRAVITY_2D_3D(K) SPHARK_SPMHD_GRAVITY(2, K<2>) SPHARK_SPMHD_GRAVITY(3, K<3>)

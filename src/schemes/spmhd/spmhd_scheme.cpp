@@ -343,12 +343,16 @@ int SpmhdScheme<D, K>::rhs(Real t, const Real* y, Real* ydot) {  // may throw: t
   if (opt_.self_gravity) gravity_pass(ydot);
   if (opt_.sink_particles) sink_pass(y, ydot);
   full_rhs_at_x_ = !halo_ && opt_.evolve_particles;
+  const Real* xs = sinks() > 0 ? y + layout_.offset(Species::Sink, Field::Position) : nullptr;
+  full_rhs_sink_x_.assign(xs, xs ? xs + 3 * sinks() : xs);
   return 0;
 }
 
 template <int D, class K>
 bool SpmhdScheme<D, K>::fully_evaluated_at_positions_of(const Real* y) const {
-  if (!full_rhs_at_x_ || x_.size() != D * n_) return false;
+  if (!full_rhs_at_x_ || x_.size() != D * n_ || full_rhs_sink_x_.size() != 3 * sinks()) return false;
+  const Real* xs = sinks() > 0 ? y + layout_.offset(Species::Sink, Field::Position) : nullptr;
+  if (xs && !std::equal(full_rhs_sink_x_.begin(), full_rhs_sink_x_.end(), xs)) return false;
   const Real* x = y + layout_.offset(Field::Position);
   for (std::size_t s = 0; s < n_; ++s)
     for (int k = 0; k < D; ++k)

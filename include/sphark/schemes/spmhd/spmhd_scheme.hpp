@@ -139,6 +139,7 @@ class SpmhdScheme final : public OdeSystem {
   // Density / h solves so far, one per particle solved (not counting attempts retried with longer
   // lists; subset evaluations solve fewer than N).
   long density_solves() const { return density_solves_; }
+  long gravity_solves() const { return gravity_solves_; }  // field computations (gravity_pass)
   // The largest h a particle may take (SpmhdOptions::h_max; +inf: none), and how many particles
   // sit there at the last solve (their root of (4)-(5) lies beyond).
   Real h_cap() const;
@@ -203,9 +204,9 @@ class SpmhdScheme final : public OdeSystem {
   // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
   // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
   int evaluate(Real t, const Real* y) noexcept;
-  // Whether the last rhs() evaluated every particle at y's positions and no particle moved,
-  // left or came since (serial schemes): h, rho, Omega and the potentials above are y's then,
-  // div v that of the velocities that rhs() saw (a leapfrog's prediction).
+  // Whether the last rhs() evaluated every particle at y's positions (gas and sinks) and no
+  // particle moved, left or came since (serial schemes): h, rho, Omega and the potentials above
+  // are y's then, div v that of the velocities that rhs() saw (a leapfrog's prediction).
   bool fully_evaluated_at_positions_of(const Real* y) const;
 
  private:
@@ -235,6 +236,7 @@ class SpmhdScheme final : public OdeSystem {
   void force_pass(const Real* y, Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_forces.cpp
   const Real* tensile_weights(const Real* y);  // per slot: the share of eq. (9) applied; nullptr: all of it everywhere
   void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
+  void compute_gravity(const std::vector<std::uint32_t>* only);                     // the field, into gravity_acc_
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
   void remove_particles(const std::vector<std::size_t>& kept, std::size_t sinks);  // change_particles' removals
@@ -341,7 +343,11 @@ class SpmhdScheme final : public OdeSystem {
   Real least_neighbour_step(std::size_t a, const MinimumImage<D>& image) const;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
   long evaluated_version_ = -1;
-  bool full_rhs_at_x_ = false;  // the last rhs() evaluated every particle at x_ (fully_evaluated_at_positions_of)
+  bool full_rhs_at_x_ = false;
+  long gravity_solves_ = 0;
+  std::vector<Real> full_rhs_sink_x_;  // the sinks' positions at that rhs()
+  std::vector<Real> self_potential_;  // the last full compute_gravity's potentials, before the sinks' part
+  Real self_potential_energy_ = 0;  // the last rhs() evaluated every particle at x_ (fully_evaluated_at_positions_of)
   // Per-particle factors of the pair loop (init): one record per particle of what its neighbours
   // read (src/schemes/spmhd/spmhd_pair_row.hpp: x, h, m, 1/h, 1/h^(D+2), rho, P, u, c_f,
   // psi/(Omega rho^2), psi, B, v, M/(Omega rho^2) (seed 000 eq. (8)), B/(Omega rho^2)), and 1/(Omega rho^2).
