@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <vector>
 
 #include "sphark/core/profile.hpp"
@@ -420,6 +421,11 @@ TEST(CloudSubsets, TheLastFullEvaluationServesItsPositionsOnly) {
   ASSERT_EQ(s.rhs(0, moved.data(), out.data()), 0) << s.last_error();
   EXPECT_TRUE(s.fully_evaluated_at_positions_of(moved.data()));
   EXPECT_FALSE(s.fully_evaluated_at_positions_of(y.data()));
+  std::vector<std::size_t> every(s.num_particles());  // a subset of all: a block cycle's last event
+  std::iota(every.begin(), every.end(), std::size_t{0});
+  ASSERT_EQ(s.rhs_subset(0, y.data(), every, out.data()), 0) << s.last_error();
+  EXPECT_TRUE(s.fully_evaluated_at_positions_of(y.data()));
+  EXPECT_TRUE(std::isfinite(s.potential_energy()));  // the field of all: its energy too
   std::vector<std::size_t> kept;
   for (std::size_t i = 1; i < n; ++i) kept.push_back(i);
   s.change_particles(kept, 0);

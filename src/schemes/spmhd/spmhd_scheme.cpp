@@ -342,10 +342,16 @@ int SpmhdScheme<D, K>::rhs(Real t, const Real* y, Real* ydot) {  // may throw: t
   force_pass(y, ydot);
   if (opt_.self_gravity) gravity_pass(ydot);
   if (opt_.sink_particles) sink_pass(y, ydot);
+  note_full_evaluation(y);
+  return 0;
+}
+
+// Every particle was evaluated at y's positions (fully_evaluated_at_positions_of).
+template <int D, class K>
+void SpmhdScheme<D, K>::note_full_evaluation(const Real* y) {
   full_rhs_at_x_ = !halo_ && opt_.evolve_particles;
   const Real* xs = sinks() > 0 ? y + layout_.offset(Species::Sink, Field::Position) : nullptr;
   full_rhs_sink_x_.assign(xs, xs ? xs + 3 * sinks() : xs);
-  return 0;
 }
 
 template <int D, class K>

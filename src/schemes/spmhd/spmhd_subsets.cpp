@@ -55,6 +55,8 @@ template <int D, class K>
 int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) {
   if (halo_) throw std::logic_error("SpmhdScheme::rhs_subset: not for a distributed scheme");
   full_rhs_at_x_ = false;  // (the others' potentials are not computed)
+  // every particle active (a block cycle's last event): the gravity field of all, as rhs()'s
+  const bool every_particle = active.size() == num_particles();
   ++rhs_calls_;
   ScopedPhase timer(Phase::Rhs);
   {
@@ -65,7 +67,7 @@ int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::si
   slots_of(active, active_slots_);
   std::sort(active_slots_.begin(), active_slots_.end());  // rows in slot (memory) order
   force_pass(y, ydot, &active_slots_);
-  if (opt_.self_gravity) gravity_pass(ydot, &active_slots_);
+  if (opt_.self_gravity) gravity_pass(ydot, every_particle ? nullptr : &active_slots_);
   if (opt_.sink_particles && layout_.particles(Species::Sink) > 0) {
     subset_scratch_.assign(layout_.size(), 0.0);
     sink_pass(y, subset_scratch_.data());  // the sink forces on all; kept for the active particles
@@ -76,6 +78,7 @@ int SpmhdScheme<D, K>::rhs_subset(Real t, const Real* y, std::span<const std::si
     for (std::size_t k = 0; k < entry_owner_.size(); ++k)
       if (is_active_[entry_owner_[k]]) ydot[k] += subset_scratch_[k];
   }
+  if (every_particle) note_full_evaluation(y);
   return 0;
 }
 

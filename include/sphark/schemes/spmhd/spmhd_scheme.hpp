@@ -204,9 +204,10 @@ class SpmhdScheme final : public OdeSystem {
   // rhs() into an internal buffer, to refresh the per-particle quantities above; nothing when y
   // is the state of the last evaluate() and nothing ran since (a function of (t, y)).
   int evaluate(Real t, const Real* y) noexcept;
-  // Whether the last rhs() evaluated every particle at y's positions (gas and sinks) and no
-  // particle moved, left or came since (serial schemes): h, rho, Omega and the potentials above
-  // are y's then, div v that of the velocities that rhs() saw (a leapfrog's prediction).
+  // Whether the last evaluation, rhs() or an rhs_subset() of every particle, was at y's
+  // positions (gas and sinks) and no particle moved, left or came since (serial schemes): h,
+  // rho, Omega and the potentials above are y's then, div v that of the velocities that
+  // evaluation saw (a leapfrog's prediction).
   bool fully_evaluated_at_positions_of(const Real* y) const;
 
  private:
@@ -237,6 +238,7 @@ class SpmhdScheme final : public OdeSystem {
   const Real* tensile_weights(const Real* y);  // per slot: the share of eq. (9) applied; nullptr: all of it everywhere
   void gravity_pass(Real* ydot, const std::vector<std::uint32_t>* only = nullptr);  // spmhd_gravity.cpp
   void compute_gravity(const std::vector<std::uint32_t>* only);                     // the field, into gravity_acc_
+  void note_full_evaluation(const Real* y);
   void sink_pass(const Real* y, Real* ydot);       // src/schemes/spmhd/spmhd_sinks.cpp
   void allocate_per_particle();
   void remove_particles(const std::vector<std::size_t>& kept, std::size_t sinks);  // change_particles' removals
