@@ -86,7 +86,7 @@ def column_density_figure(found, out):
                 ax.legend(loc="upper right", fontsize=8)
             ax.set_xlabel("x / R")
             ax.set_ylabel("z / R")
-            ax.set_title(f"{label}: {title}, t = {table['t_over_tff'][-1]:.3f} t_ff", fontsize=9)
+            ax.set_title(f"{label}\n{title}, t = {table['t_over_tff'][-1]:.3f} t_ff", fontsize=9)  # (two lines: clear of the colour bar)
     fig.tight_layout()
     save_figure(fig, os.path.join(out, "fig4_column_density.png"))
 

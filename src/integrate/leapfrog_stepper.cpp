@@ -1,4 +1,8 @@
 // Leapfrog steppers, one class, two variants (both fixed dt or dt = cfl_safety x max_stable_dt).
+// The next step's max_stable_dt is taken right after each step (plan_next_step), before the time
+// loop's after_step: a resize that carries the derivatives along (gas accreted onto a sink, a
+// migration) keeps it and the next kick's derivative, so that no evaluation follows it (Phantom
+// takes its next step from the force pass before it accretes, and kicks on with those forces).
 //
 // "leapfrog": kick-drift-kick, one RHS evaluation per step (FSAL, Phantom style). With w every
 // entry except the positions x (velocity, density, energy, B, psi, ...):
