@@ -345,11 +345,11 @@ class SpmhdScheme final : public OdeSystem {
   Real least_neighbour_step(std::size_t a, const MinimumImage<D>& image) const;
   std::vector<Real> evaluated_y_;  // the state of the last evaluate(), valid while version_ == evaluated_version_
   long evaluated_version_ = -1;
-  bool full_rhs_at_x_ = false;
+  bool full_rhs_at_x_ = false;         // the last evaluation was of every particle at x_ (fully_evaluated_at_positions_of)
+  std::vector<Real> full_rhs_sink_x_;  // the sinks' positions at that evaluation
   long gravity_solves_ = 0;
-  std::vector<Real> full_rhs_sink_x_;  // the sinks' positions at that rhs()
-  std::vector<Real> self_potential_;  // the last full compute_gravity's potentials, before the sinks' part
-  Real self_potential_energy_ = 0;  // the last rhs() evaluated every particle at x_ (fully_evaluated_at_positions_of)
+  std::vector<Real> self_potential_;   // the last full compute_gravity's potentials, before the sinks' part
+  Real self_potential_energy_ = 0;     // and its energy
   // Per-particle factors of the pair loop (init): one record per particle of what its neighbours
   // read (src/schemes/spmhd/spmhd_pair_row.hpp: x, h, m, 1/h, 1/h^(D+2), rho, P, u, c_f,
   // psi/(Omega rho^2), psi, B, v, M/(Omega rho^2) (seed 000 eq. (8)), B/(Omega rho^2)), and 1/(Omega rho^2).
