@@ -346,50 +346,6 @@ int SpmhdScheme<D, K>::rhs(Real t, const Real* y, Real* ydot) {  // may throw: t
   return 0;
 }
 
-// Every particle was evaluated at y's positions (fully_evaluated_at_positions_of).
-template <int D, class K>
-void SpmhdScheme<D, K>::note_full_evaluation(const Real* y) {
-  full_rhs_at_x_ = !halo_ && opt_.evolve_particles;
-  const Real* xs = sinks() > 0 ? y + layout_.offset(Species::Sink, Field::Position) : nullptr;
-  full_rhs_sink_x_.assign(xs, xs ? xs + 3 * sinks() : xs);
-}
-
-template <int D, class K>
-bool SpmhdScheme<D, K>::fully_evaluated_at_positions_of(const Real* y) const {
-  if (!full_rhs_at_x_ || x_.size() != D * n_ || full_rhs_sink_x_.size() != 3 * sinks()) return false;
-  const Real* xs = sinks() > 0 ? y + layout_.offset(Species::Sink, Field::Position) : nullptr;
-  if (xs && !std::equal(full_rhs_sink_x_.begin(), full_rhs_sink_x_.end(), xs)) return false;
-  const Real* x = y + layout_.offset(Field::Position);
-  for (std::size_t s = 0; s < n_; ++s)
-    for (int k = 0; k < D; ++k)
-      if (x[D * perm_[s] + k] != x_[D * s + k]) return false;
-  return true;
-}
-
-template <int D, class K>
-int SpmhdScheme<D, K>::evaluate(Real t, const Real* y) noexcept {
-  const double pairs_before = pairs_total_;
-  int rc = 0;
-  try {  // diagnostics and frames: an exception becomes a failure code with its message
-    // y evaluated last (no rhs() or prepare() since): every per-particle array is already y's
-    // (distributed: on every rank, or every rank evaluates)
-    bool same = evaluated_version_ == version_ && std::equal(y, y + layout_.size(), evaluated_y_.begin());
-    if (halo_) same = halo_->comm().allreduce(std::int64_t(same ? 1 : 0), ReduceOp::Min) == 1;
-    if (same) return 0;
-    rc = rhs(t, y, scratch_.data());
-  } catch (...) {
-    error_ = current_exception_message("SpmhdScheme::evaluate");
-    rc = -1;
-  }
-  if (rc == 0) {
-    evaluated_y_.assign(y, y + layout_.size());
-    evaluated_version_ = version_;
-  }
-  --rhs_calls_;  // diagnostics are not counted as integrator work
-  pairs_total_ = pairs_before;
-  return rc;
-}
-
 template <int D, class K>
 int SpmhdScheme<D, K>::stiff_diagonal(Real t, const Real* y, Real* c) {
   if (const int rc = prepare(t, y); rc != 0) return rc;
