@@ -27,6 +27,9 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
         "--stepper leapfrog or leapfrog-blocks: repeat the RHS (of the active particles) while the kicked velocities "
         "differ from the predicted ones by more than this x their rms (Phantom's tolv); 0 = off", NonNegative{});
   p.add("--mri-ratio", &o.mri_ratio, "--stepper mri-<table>: slow step / fast step", Positive{});
+  p.add("--mri-levels", &o.mri_levels,
+        "--stepper mri-<table>: levels of nested MRIStep (2 = slow/fast; more need --mri-ratio >= 2 with --dt)",
+        Positive{});
   p.add("--mri-fast-table", &o.mri_fast_table, "--stepper mri-<table>: the fast integrator's ERK table",
         OneOf{erk_table_names()});
   p.add("--partition-hysteresis", &o.partition_hysteresis,
@@ -69,6 +72,7 @@ StepperOptions stepper_options(const CoreOptions& o) {
   s.max_dt = o.max_dt;
   s.velocity_tolerance = o.velocity_tolerance;
   s.mri_ratio = o.mri_ratio;
+  s.mri_levels = o.mri_levels;
   s.mri_fast_table = o.mri_fast_table;
   s.partition_hysteresis = o.partition_hysteresis;
   s.fit_block_cycles = o.block_cycles == "fitted";

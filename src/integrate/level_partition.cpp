@@ -9,18 +9,25 @@
 
 namespace sphark {
 
-LevelPartition::LevelPartition(Real dt_top, int max_level, Real hysteresis)
-    : dt_top_(dt_top), max_level_(max_level), hysteresis_(hysteresis) {
+LevelPartition::LevelPartition(Real dt_top, int max_level, Real hysteresis, int ratio)
+    : dt_top_(dt_top), max_level_(max_level), hysteresis_(hysteresis), ratio_(ratio) {
   if (!(dt_top > 0) || !std::isfinite(dt_top))
     throw std::invalid_argument("partition top step=" + detail::number_text(dt_top) + ": must be finite and > 0");
   if (max_level < 0 || max_level > 60)
     throw std::invalid_argument("partition max_level=" + std::to_string(max_level) + ": must be in 0..60");
   if (!(hysteresis >= 0)) throw std::invalid_argument("partition hysteresis=" + detail::number_text(hysteresis) + ": must be >= 0");
+  if (ratio < 2) throw std::invalid_argument("partition ratio=" + std::to_string(ratio) + ": must be >= 2");
 }
 
-Real LevelPartition::level_dt(int l) const { return std::ldexp(dt_top_, -l); }
+// dt_top / ratio^l: exact halvings for ratio 2, else l divisions.
+Real LevelPartition::level_dt(int l) const {
+  if (ratio_ == 2) return std::ldexp(dt_top_, -l);
+  Real dt = dt_top_;
+  for (int k = 0; k < l; ++k) dt /= ratio_;
+  return dt;
+}
 
-// The smallest l with dt_top / 2^l <= dt, by exact halvings (no log2 round-off at bin edges).
+// The smallest l with level_dt(l) <= dt (no log2 round-off at bin edges).
 int LevelPartition::needed_level(Real dt) const {
   if (!(dt > 0)) throw std::invalid_argument("particle stable step=" + detail::number_text(dt) + ": must be > 0");
   int l = 0;

@@ -1,4 +1,4 @@
-// The slow/fast split of the MRIStep stepper (mri_split.hpp).
+// The levels of the MRIStep stepper (mri_split.hpp).
 #include "mri_split.hpp"
 #include "number_text.hpp"
 
@@ -18,9 +18,17 @@ MriSplit::MriSplit(const StepperOptions& o)
     : adaptive_(!(o.fixed_dt > 0)),
       mri_ratio_(o.mri_ratio),
       slow_fraction_(o.mri_slow_fraction),
-      levels_(adaptive_ ? o.max_dt : o.fixed_dt, adaptive_ ? kMaxLevel : 1, o.partition_hysteresis),
-      h_slow_(levels_.dt_top()),
-      ratio_(o.mri_ratio) {}
+      levels_(adaptive_ ? o.max_dt : o.fixed_dt, adaptive_ ? kMaxLevel : o.mri_levels - 1, o.partition_hysteresis,
+              adaptive_ ? 2 : std::max(2, o.mri_ratio)),
+      bound_(static_cast<std::size_t>(o.mri_levels), 0),
+      h_(static_cast<std::size_t>(o.mri_levels)),
+      sets_(static_cast<std::size_t>(o.mri_levels)) {
+  if (o.mri_levels < 2) throw std::invalid_argument("mri_levels=" + std::to_string(o.mri_levels) + ": must be >= 2");
+  if (!adaptive_)
+    for (int k = 0; k < count(); ++k) h_[static_cast<std::size_t>(k)] = k == 0 ? o.fixed_dt : h_[k - 1] / o.mri_ratio;
+  else
+    set_bounds(0);
+}
 
 // The shallowest level l with at least slow_fraction of the particles on levels <= l.
 int MriSplit::slow_level() const {
@@ -34,32 +42,49 @@ int MriSplit::slow_level() const {
   return kMaxLevel;
 }
 
+// Adaptive: the power-of-two bounds of the MRI levels and their steps (mri_split.hpp).
+void MriSplit::set_bounds(int l) {
+  const int K = count(), span = std::max(0, levels_.deepest() - l);
+  bound_[0] = l;
+  h_[0] = levels_.level_dt(l);
+  for (int k = 1; k < K; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    bound_[ku] = l + (k * span + K - 2) / (K - 1);  // l + ceil(k span / (K - 1))
+    h_[ku] = h_[ku - 1] / std::max(mri_ratio_, 1 << std::min(30, bound_[ku] - bound_[ku - 1]));
+  }
+}
+
+int MriSplit::level_of(std::size_t particle) const {
+  const int l = levels_.level(particle);
+  if (!adaptive_) return l;
+  int k = 0;
+  while (k + 1 < count() && l > bound_[static_cast<std::size_t>(k)]) ++k;
+  return k;
+}
+
+void MriSplit::check_stable(std::span<const Real> stable, Real t) const {
+  std::size_t worst = 0;
+  for (std::size_t i = 1; i < stable.size(); ++i)
+    if (stable[i] < stable[worst]) worst = i;
+  if (stable.empty()) return;
+  if (!adaptive_ && stable[worst] < h_fast())
+    throw std::runtime_error("particle " + std::to_string(worst) + " has the stable step " + at_time(stable[worst]) +
+                             " < the fastest step fixed_dt/mri_ratio^" + std::to_string(count() - 1) + "=" +
+                             at_time(h_fast()) + " at t=" + at_time(t) + ": raise mri_ratio or mri_levels");
+  if (adaptive_ && stable[worst] < levels_.level_dt(kMaxLevel))
+    throw std::runtime_error("particle " + std::to_string(worst) + " has the stable step " + at_time(stable[worst]) +
+                             " < max_dt/2^" + std::to_string(kMaxLevel) + " at t=" + at_time(t));
+}
+
 bool MriSplit::update(std::span<const Real> stable, Real t) {
   const bool levels_changed = levels_.update(stable);
-  const int l = slow_level();
-  if (!adaptive_) {
-    std::size_t worst = 0;
-    for (std::size_t i = 1; i < stable.size(); ++i)
-      if (stable[i] < stable[worst]) worst = i;
-    if (!stable.empty() && stable[worst] < h_fast())
-      throw std::runtime_error("particle " + std::to_string(worst) + " has the stable step " + at_time(stable[worst]) +
-                               " < fast step fixed_dt/mri_ratio=" + at_time(h_fast()) + " at t=" + at_time(t) +
-                               ": raise mri_ratio");
-  }
-  if (adaptive_) {
-    const Real deepest_dt = levels_.level_dt(levels_.deepest());
-    for (std::size_t i = 0; i < stable.size(); ++i)
-      if (stable[i] < deepest_dt)
-        throw std::runtime_error("particle " + std::to_string(i) + " has the stable step " + at_time(stable[i]) +
-                                 " < max_dt/2^" + std::to_string(kMaxLevel) + " at t=" + at_time(t));
-  }
-  if (built_ && !levels_changed && l == slow_level_) return false;
+  check_stable(stable, t);
+  const std::vector<int> old_bounds = bound_;
+  if (adaptive_) set_bounds(slow_level());
+  if (built_ && !levels_changed && bound_ == old_bounds) return false;
   built_ = true;
-  slow_level_ = l;
-  h_slow_ = levels_.level_dt(l);
-  if (adaptive_) ratio_ = std::max(mri_ratio_, 1 << std::min(30, std::max(0, levels_.deepest() - l)));
-  slow_.clear(), fast_.clear();
-  for (std::size_t i = 0; i < levels_.size(); ++i) (levels_.level(i) > l ? fast_ : slow_).push_back(i);
+  for (auto& s : sets_) s.clear();
+  for (std::size_t i = 0; i < levels_.size(); ++i) sets_[static_cast<std::size_t>(level_of(i))].push_back(i);
   return true;
 }
 

@@ -1,15 +1,17 @@
 #pragma once
-// The slow/fast split of the MRIStep stepper (mri_stepper.cpp; issue #17). Private to
-// src/integrate/.
+// The partition of the particles into the levels of the MRIStep stepper (mri_stepper.cpp;
+// issue #17): level 0 slow, level K-1 fastest, K = StepperOptions::mri_levels (two: slow/fast).
 //
-// Fixed slow step (StepperOptions::fixed_dt = h): particles whose stable step (x cfl_safety) is
-// below h are fast (levels 0 / 1 of a LevelPartition with top step h), the fast step is
-// h / mri_ratio, and a fast particle whose stable step is below it is an error.
+// Fixed slow step (StepperOptions::fixed_dt = h): level k steps by h / mri_ratio^k; a particle
+// takes the shallowest level whose step is within its stable step (x cfl_safety), and one whose
+// stable step is below the deepest level's step is an error.
 // Adaptive slow step (fixed_dt = 0, max_dt = T): the particles are binned on the power-of-two
 // levels of T (LevelPartition, hysteresis); the slow level l* is the shallowest level holding,
-// with all shallower ones, at least mri_slow_fraction of the particles; h = T / 2^l*, the fast
-// particles are those deeper than l*, and the fast step is h / max(mri_ratio, 2^(deepest - l*))
-// (every fast particle then steps within its stable step).
+// with all shallower ones, at least mri_slow_fraction of the particles, d the deepest occupied.
+// MRI level k >= 1 holds the power-of-two levels up to l* + ceil(k (d - l*) / (K - 1)) (level
+// K-1 up to d); its step is level k-1's divided by max(mri_ratio, 2^(its span in power-of-two
+// levels)), so every particle steps within its stable step. With K = 2: slow h = T / 2^l*, fast
+// h / max(mri_ratio, 2^(d - l*)).
 #include <cstddef>
 #include <span>
 #include <string>
@@ -25,33 +27,35 @@ class MriSplit {
   explicit MriSplit(const StepperOptions& o);
 
   // Bins the particles by their stable steps (x cfl_safety) at time t. Returns true if the sets
-  // changed (or were not built yet). Throws std::runtime_error (one line) in the fixed mode when
-  // a fast particle's stable step is below the fast step.
+  // changed (or were not built yet). Throws std::runtime_error (one line) when a particle's
+  // stable step is below the deepest level's step.
   bool update(std::span<const Real> stable, Real t);
   // Restores the levels of a previous run (resume_data).
   void set_levels(std::vector<int> levels) { levels_.set_levels(std::move(levels)); }
   const std::vector<int>& levels() const { return levels_.levels(); }
 
-  const std::vector<std::size_t>& slow() const { return slow_; }
-  const std::vector<std::size_t>& fast() const { return fast_; }
-  bool is_fast(std::size_t particle) const { return levels_.level(particle) > slow_level_; }
-  Real h_slow() const { return h_slow_; }
-  Real h_fast() const { return h_slow_ / ratio_; }
-  int ratio() const { return ratio_; }
+  int count() const { return static_cast<int>(sets_.size()); }                // K
+  const std::vector<std::size_t>& set(int k) const { return sets_[static_cast<std::size_t>(k)]; }  // ascending
+  int level_of(std::size_t particle) const;                                      // its MRI level
+  Real h(int k) const { return h_[static_cast<std::size_t>(k)]; }               // level k's step
+  Real h_slow() const { return h_.front(); }
+  Real h_fast() const { return h_.back(); }
   bool adaptive() const { return adaptive_; }
 
  private:
   int slow_level() const;
+  void set_bounds(int slow_level);
+  void check_stable(std::span<const Real> stable, Real t) const;
 
   bool adaptive_;
   int mri_ratio_;
   Real slow_fraction_;
   LevelPartition levels_;
-  int slow_level_ = 0;
-  Real h_slow_;
-  int ratio_;
+  // Adaptive: the deepest power-of-two level of each MRI level; fixed: MRI level = partition level.
+  std::vector<int> bound_;
+  std::vector<Real> h_;
   bool built_ = false;
-  std::vector<std::size_t> slow_, fast_;
+  std::vector<std::vector<std::size_t>> sets_;
 };
 
 }  // namespace sphark::detail

@@ -1,14 +1,19 @@
 // ARKODE MRIStep (multirate infinitesimal GARK / MIS methods; Sandu 2019 SINUM 57, Chinomona &
-// Reynolds 2021 SISC 43; Knoth & Wolke 1998 for MIS) over a slow/fast partition of the particles
-// (issue #17): f = f_slow + f_fast, f_fast the derivatives of the fast particles, f_slow those of
-// the others, each computed against every neighbour (OdeSystem::rhs_subset). The slow method is
-// the coupling table (fixed step StepperOptions::fixed_dt: MRIStep of SUNDIALS 6.4.1 has no slow
-// step adaptivity); the fast integrator an explicit ARKStep (ERKStep has no MRIStep inner-stepper
-// constructor in 6.4.1; ARKStep with an explicit table only is the same ERK method) with the
-// fixed step fixed_dt / mri_ratio. The partition (LevelPartition, levels 0 slow / >= 1 fast) is
-// redone after every slow step, in MRIStep's step post-processing callback: it runs before
-// MRIStep evaluates f_slow at the new step (the first stage of the next step), so the next step
-// is exactly the first step of a fresh MRIStep at that state with the new partition.
+// Reynolds 2021 SISC 43; Knoth & Wolke 1998 for MIS) over a partition of the particles into K
+// levels (issue #17; K = StepperOptions::mri_levels, 2 by default): f = f_0 + ... + f_{K-1}, f_k
+// the derivatives of level k's particles, each computed against every neighbour
+// (OdeSystem::rhs_subset). Level 0 is the slow method (the coupling table, fixed step: MRIStep of
+// SUNDIALS 6.4.1 has no slow step adaptivity); the fastest level an explicit ARKStep (ERKStep
+// has no MRIStep inner-stepper constructor in 6.4.1; ARKStep with an explicit table only is the
+// same ERK method). More than two levels nest (Sandu 2019 §7, "telescopic" MRI): level k's
+// MRIStep (0 < k < K-1), with the same coupling table and fixed step, is the inner stepper of
+// level k-1's through a custom MRIStepInnerStepper (evolve: MRIStepEvolve to the stop time; reset:
+// MRIStepReset; full RHS: f_k + ... + f_{K-1} in one subset evaluation), and its slow function
+// is f_k plus the forcing polynomial of level k-1 (MRIStepInnerStepper_AddForcing), as ARKStep
+// adds it to its own RHS when it is the inner stepper. The partition (MriSplit) is redone after
+// every slow step, in the outer MRIStep's step post-processing callback: it runs before MRIStep
+// evaluates f_0 at the new step (the first stage of the next step), so the next step is exactly
+// the first step of a fresh MRIStep at that state with the new partition.
 // Every SUNDIALS object is owned by an RAII holder; no exception crosses a C callback.
 #include <algorithm>
 #include <cmath>
@@ -41,11 +46,20 @@ int mri_table_order(const std::string& name) {
 namespace detail {
 namespace {
 
-enum Level { kSlow = 0, kFast = 1 };
+class MriStepper;
+
+// What a level's C callbacks get: the stepper and the level (stable: held by unique_ptr).
+struct LevelContext {
+  MriStepper* stepper;
+  int level;
+};
 
 class MriStepper final : public Stepper {
  public:
   MriStepper(OdeSystem& system, const StepperOptions& opts, Real t0, const Real* y0);
+  ~MriStepper() override { release(); }
+  MriStepper(const MriStepper&) = delete;
+  MriStepper& operator=(const MriStepper&) = delete;
   AdvanceStatus advance(Real t_out, Real* y, Real& t) override;
   AdvanceStatus step(Real t_out, Real* y, Real& t) override;
   StepperStats stats() const override;
@@ -56,23 +70,40 @@ class MriStepper final : public Stepper {
   // With it the latest derivatives handed to particle_stable_dt, when there are.
   std::vector<Real> resume_data() const override {
     std::vector<Real> r(split_.levels().begin(), split_.levels().end());
-    if (approx_valid_[kSlow] && approx_valid_[kFast]) r.insert(r.end(), approx_f_.begin(), approx_f_.end());
+    if (all_approx_valid()) r.insert(r.end(), approx_f_.begin(), approx_f_.end());
     return r;
   }
-  // Between slow steps: MRIStep and its fast integrator start afresh at (t, new y) (their step
+  // Between slow steps: MRIStep and its inner integrators start afresh at (t, new y) (their step
   // sizes are fixed; nothing else carries over), the partition is binned afresh.
   void resize(const Resized& state) override;
 
  private:
+  int levels() const { return split_.count(); }
+  // The levels down to the deepest one holding a particle (at least two): the integrators built.
+  int wanted_depth() const;
+  bool all_approx_valid() const {
+    return std::all_of(approx_valid_.begin(), approx_valid_.end(), [](bool v) { return v; });
+  }
   void create(Real t0);
+  void release();
+  void rebuild();
+  void* create_mri(int level, Real t0, N_Vector y0, MRIStepInnerStepper inner);
+  MRIStepInnerStepper wrap_mri(int level);
   void check(int flag, const char* call) const;
   void repartition(Real t, const Real* y);
-  int evaluate(Level level, realtype t, N_Vector y, N_Vector ydot) noexcept;
+  void set_steps();
+  int evaluate(int level, realtype t, N_Vector y, N_Vector ydot) noexcept;
+  int evaluate_from(int level, realtype t, N_Vector y, N_Vector ydot) noexcept;
+  int evaluate_set(int level, const std::vector<std::size_t>& set, realtype t, N_Vector y, N_Vector ydot);
+  int evolve_level(int level, realtype t0, realtype tout, N_Vector y) noexcept;
   AdvanceStatus end_at_last_step(Real* y, Real& t, AdvanceStatus status);
   std::string failure_text(int flag) const;
-  static int slow_cb(realtype t, N_Vector y, N_Vector ydot, void* self);
-  static int fast_cb(realtype t, N_Vector y, N_Vector ydot, void* self);
+  long steps_of(int level) const;
+  static int level_cb(realtype t, N_Vector y, N_Vector ydot, void* context);
   static int step_done_cb(realtype t, N_Vector y, void* self);
+  static int inner_evolve_cb(MRIStepInnerStepper s, realtype t0, realtype tout, N_Vector y);
+  static int inner_full_rhs_cb(MRIStepInnerStepper s, realtype t, N_Vector y, N_Vector f, int mode);
+  static int inner_reset_cb(MRIStepInnerStepper s, realtype t, N_Vector y);
   static void error_cb(int code, const char* module, const char* function, char* msg, void* self);
 
   OdeSystem& system_;
@@ -81,22 +112,30 @@ class MriStepper final : public Stepper {
   std::vector<Real> y_;  // state after the last accepted slow step
   Real t_;
   MriSplit split_;
-  Real h_slow_set_ = 0, h_fast_set_ = 0;  // the fixed steps MRIStep and ARKStep were given
-  std::vector<std::size_t> sets_[2];  // slow, fast particles (ascending)
+  std::vector<Real> h_set_;  // the fixed steps each level's integrator was given
+  std::vector<std::vector<std::size_t>> sets_;  // each level's particles (ascending)
   std::vector<Real> stable_dt_;
-  // The latest f_slow and f_fast values of each set's entries: the derivative handed to
-  // particle_stable_dt (its "stepper's approximation of f"; valid once both sets have been
-  // evaluated since the last repartition).
+  // The latest derivatives of each level's entries: the derivative handed to particle_stable_dt
+  // (its "stepper's approximation of f"; valid once every level has been evaluated since the
+  // last repartition).
   std::vector<Real> approx_f_;
-  std::vector<std::size_t> set_entries_[2];
-  bool approx_valid_[2] = {false, false};
-  long base_slow_steps_ = 0, base_fast_steps_ = 0;  // of the memories replaced by resize()
-  LevelStats level_stats_[2];
+  std::vector<std::vector<std::size_t>> set_entries_;
+  std::vector<bool> approx_valid_;
+  std::vector<long> base_steps_;  // of the memories replaced by resize()
+  std::vector<LevelStats> level_stats_;
+  std::vector<std::unique_ptr<LevelContext>> contexts_;
+  std::vector<char> forcing_on_;  // level k's MRIStep is inside its wrapper's evolve: f_k gets the forcing
+  std::vector<std::vector<Real>> level_y_;  // [k]: the state of level k's MRIStep (k = 1 .. K-2)
   long repartitions_ = 0;  // partitions that changed a set
-  bool sets_valid_ = false;  // sets_ follow partition_ (false until the first repartition)
-  ArkMemPtr fast_mem_;     // destroyed last: the inner stepper and MRIStep refer to it
-  InnerStepperPtr inner_;
-  MriMemPtr mem_;
+  bool sets_valid_ = false;  // sets_ follow the split (false until the first repartition)
+  int depth_ = 2;            // levels 0 .. depth_-1 have an integrator (the last an ARKStep)
+  // Freed by release(): the outer MRIStep (mem_) first, then each wrapper and the MRIStep it
+  // wraps (inner_[k], mems_[k], k = 1 .. K-2), then the fast ARKStep's wrapper and the ARKStep.
+  ArkMemPtr fast_mem_;
+  InnerStepperPtr fast_inner_;
+  std::vector<MriMemPtr> mems_;            // [k]: level k's MRIStep, k = 1 .. K-2 (index 0 unused)
+  std::vector<InnerStepperPtr> inner_;     // [k]: the wrapper of mems_[k]
+  MriMemPtr mem_;                          // level 0
   std::string failure_, callback_error_, arkode_message_;
   bool failed_ = false, interrupted_ = false, restart_pending_ = false;
 };
@@ -108,6 +147,11 @@ MriStepper::MriStepper(OdeSystem& system, const StepperOptions& opts, Real t0, c
       y_(y0, y0 + system.size()),
       t_(t0),
       split_(opts) {
+  const auto K = static_cast<std::size_t>(levels());
+  h_set_.assign(K, 0);
+  sets_.resize(K), set_entries_.resize(K), approx_valid_.assign(K, false);
+  base_steps_.assign(K, 0), level_stats_.resize(K), forcing_on_.assign(K, 0);
+  for (int k = 0; k < levels(); ++k) contexts_.push_back(std::make_unique<LevelContext>(LevelContext{this, k}));
   const std::vector<Real>& r = opts.resume_data;
   const std::size_t np = system.num_particles();
   if (!r.empty()) {  // a restart: the partition (and derivatives) of the run being continued
@@ -117,11 +161,19 @@ MriStepper::MriStepper(OdeSystem& system, const StepperOptions& opts, Real t0, c
     split_.set_levels(std::vector<int>(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(np)));
     if (r.size() > np) {
       approx_f_.assign(r.begin() + static_cast<std::ptrdiff_t>(np), r.end());
-      approx_valid_[kSlow] = approx_valid_[kFast] = true;
+      approx_valid_.assign(K, true);
     }
   }
   repartition(t0, y0);
+  depth_ = wanted_depth();
   create(t0);
+}
+
+int MriStepper::wanted_depth() const {
+  int depth = 2;
+  for (int k = 2; k < levels(); ++k)
+    if (!sets_[static_cast<std::size_t>(k)].empty()) depth = k + 1;
+  return depth;
 }
 
 void MriStepper::check(int flag, const char* call) const {
@@ -130,102 +182,196 @@ void MriStepper::check(int flag, const char* call) const {
                              (arkode_message_.empty() ? "" : ": " + arkode_message_));
 }
 
-// The fast ARKStep (explicit table only, fixed step), its inner-stepper wrapper, the MRIStep.
+// Level `level`'s MRIStep over `inner`, the coupling table of opts_.method, fixed step.
+void* MriStepper::create_mri(int level, Real t0, N_Vector y0, MRIStepInnerStepper inner) {
+  MriMemPtr mem(MRIStepCreate(&level_cb, nullptr, t0, y0, inner, ctx_.get()));
+  if (!mem) throw std::runtime_error("MRIStepCreate failed");
+  void* m = mem.get();
+  check(MRIStepSetUserData(m, contexts_[static_cast<std::size_t>(level)].get()), "MRIStepSetUserData");
+  check(MRIStepSetErrHandlerFn(m, &error_cb, this), "MRIStepSetErrHandlerFn");
+  MRIStepCoupling table = MRIStepCoupling_LoadTableByName(opts_.method.substr(4).c_str());
+  if (table == nullptr) throw std::invalid_argument("method=" + opts_.method + ": no such MRI coupling table");
+  const int flag = MRIStepSetCoupling(m, table);
+  MRIStepCoupling_Free(table);  // copied by MRIStepSetCoupling
+  check(flag, "MRIStepSetCoupling");
+  check(MRIStepSetFixedStep(m, split_.h(level)), "MRIStepSetFixedStep");
+  check(MRIStepSetMaxNumSteps(m, opts_.max_steps), "MRIStepSetMaxNumSteps");
+  if (level == 0) {
+    check(MRIStepSetPostprocessStepFn(m, &step_done_cb), "MRIStepSetPostprocessStepFn");  // after SetUserData
+    mem_ = std::move(mem);
+  } else {
+    mems_[static_cast<std::size_t>(level)] = std::move(mem);
+  }
+  return m;
+}
+
+// The inner stepper of level level-1: level `level`'s MRIStep behind a custom wrapper.
+MRIStepInnerStepper MriStepper::wrap_mri(int level) {
+  MRIStepInnerStepper s = nullptr;
+  check(MRIStepInnerStepper_Create(ctx_.get(), &s), "MRIStepInnerStepper_Create");
+  inner_[static_cast<std::size_t>(level)].reset(s);
+  check(MRIStepInnerStepper_SetContent(s, contexts_[static_cast<std::size_t>(level)].get()), "MRIStepInnerStepper_SetContent");
+  check(MRIStepInnerStepper_SetEvolveFn(s, &inner_evolve_cb), "MRIStepInnerStepper_SetEvolveFn");
+  check(MRIStepInnerStepper_SetFullRhsFn(s, &inner_full_rhs_cb), "MRIStepInnerStepper_SetFullRhsFn");
+  check(MRIStepInnerStepper_SetResetFn(s, &inner_reset_cb), "MRIStepInnerStepper_SetResetFn");
+  return s;
+}
+
+// The fastest level's ARKStep (explicit table only, fixed step) and its inner-stepper wrapper,
+// then the MRISteps from the deepest to level 0, each the inner stepper of the next; depth_
+// levels (empty deeper levels get no integrator: their fixed steps would be vector work only).
 void MriStepper::create(Real t0) {
+  const int K = depth_;
   auto y0 = make_view(y_.size(), y_.data(), ctx_.get());  // copied by the Create calls
-  fast_mem_.reset(ARKStepCreate(&fast_cb, nullptr, t0, y0.get(), ctx_.get()));
+  fast_mem_.reset(ARKStepCreate(&level_cb, nullptr, t0, y0.get(), ctx_.get()));
   if (!fast_mem_) throw std::runtime_error("ARKStepCreate (MRIStep fast integrator) failed");
   void* fast = fast_mem_.get();
-  check(ARKStepSetUserData(fast, this), "ARKStepSetUserData");
+  check(ARKStepSetUserData(fast, contexts_[static_cast<std::size_t>(K - 1)].get()), "ARKStepSetUserData");
   check(ARKStepSetErrHandlerFn(fast, &error_cb, this), "ARKStepSetErrHandlerFn");
   if (ARKStepSetTableName(fast, "ARKODE_DIRK_NONE", opts_.mri_fast_table.c_str()) < 0)
     throw std::invalid_argument("mri_fast_table=" + opts_.mri_fast_table + ": ARKStepSetTableName rejected it");
-  check(ARKStepSetFixedStep(fast, split_.h_fast()), "ARKStepSetFixedStep");
+  check(ARKStepSetFixedStep(fast, split_.h(K - 1)), "ARKStepSetFixedStep");
   // Lagrange: the default Hermite interpolant costs one more f_fast evaluation per fast step.
   check(ARKStepSetInterpolantType(fast, ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType");
   check(ARKStepSetMaxNumSteps(fast, opts_.max_steps), "ARKStepSetMaxNumSteps");
   MRIStepInnerStepper inner = nullptr;
   check(ARKStepCreateMRIStepInnerStepper(fast, &inner), "ARKStepCreateMRIStepInnerStepper");
-  inner_.reset(inner);
-  mem_.reset(MRIStepCreate(&slow_cb, nullptr, t0, y0.get(), inner, ctx_.get()));
-  if (!mem_) throw std::runtime_error("MRIStepCreate failed");
-  void* mem = mem_.get();
-  check(MRIStepSetUserData(mem, this), "MRIStepSetUserData");  // before the post-processing fn
-  check(MRIStepSetErrHandlerFn(mem, &error_cb, this), "MRIStepSetErrHandlerFn");
-  check(MRIStepSetPostprocessStepFn(mem, &step_done_cb), "MRIStepSetPostprocessStepFn");
-  MRIStepCoupling table = MRIStepCoupling_LoadTableByName(opts_.method.substr(4).c_str());
-  if (table == nullptr) throw std::invalid_argument("method=" + opts_.method + ": no such MRI coupling table");
-  const int flag = MRIStepSetCoupling(mem, table);
-  MRIStepCoupling_Free(table);  // copied by MRIStepSetCoupling
-  check(flag, "MRIStepSetCoupling");
-  check(MRIStepSetFixedStep(mem, split_.h_slow()), "MRIStepSetFixedStep");
-  h_slow_set_ = split_.h_slow(), h_fast_set_ = split_.h_fast();
-  check(MRIStepSetMaxNumSteps(mem, opts_.max_steps), "MRIStepSetMaxNumSteps");
+  fast_inner_.reset(inner);
+  mems_.resize(static_cast<std::size_t>(levels()));
+  inner_.resize(static_cast<std::size_t>(levels()));
+  level_y_.assign(static_cast<std::size_t>(levels()), y_);
+  for (int k = K - 2; k >= 1; --k) {
+    create_mri(k, t0, y0.get(), inner);
+    inner = wrap_mri(k);
+  }
+  create_mri(0, t0, y0.get(), inner);
+  for (int k = 0; k < levels(); ++k) h_set_[static_cast<std::size_t>(k)] = split_.h(k);
 }
 
 // The split at (t, y) from the particles' stable steps x cfl_safety (mri_split.hpp).
 void MriStepper::repartition(Real t, const Real* y) {
   stable_dt_.assign(system_.num_particles(), 0);
-  const bool approx = approx_valid_[kSlow] && approx_valid_[kFast] && approx_f_.size() == y_.size();
+  const bool approx = all_approx_valid() && approx_f_.size() == y_.size();
   if (const int code = system_.particle_stable_dt(t, y, approx ? approx_f_.data() : nullptr, stable_dt_.data()); code != 0)
     throw std::runtime_error("particle_stable_dt failed (code " + std::to_string(code) + ") at t=" + at_time(t) +
                              ": " + system_.last_error());
   for (Real& dt : stable_dt_) dt *= opts_.cfl_safety;
   if (!split_.update(stable_dt_, t) && sets_valid_) return;
   sets_valid_ = true;
-  sets_[kSlow] = split_.slow();
-  sets_[kFast] = split_.fast();
+  const auto K = static_cast<std::size_t>(levels());
+  for (std::size_t k = 0; k < K; ++k) sets_[k] = split_.set(static_cast<int>(k)), set_entries_[k].clear();
   ++repartitions_;
   const std::vector<std::size_t> owner = system_.entry_particles();
-  set_entries_[kSlow].clear(), set_entries_[kFast].clear();
-  for (std::size_t k = 0; k < owner.size(); ++k) set_entries_[split_.is_fast(owner[k])].push_back(k);
+  for (std::size_t k = 0; k < owner.size(); ++k)
+    set_entries_[static_cast<std::size_t>(split_.level_of(owner[k]))].push_back(k);
   approx_f_.resize(y_.size());
-  approx_valid_[kSlow] = sets_[kSlow].empty(), approx_valid_[kFast] = sets_[kFast].empty();
+  for (std::size_t k = 0; k < K; ++k) approx_valid_[k] = sets_[k].empty();
 }
 
-// One level's derivatives (the other level's entries zero); an empty set costs no evaluation.
-int MriStepper::evaluate(Level level, realtype t, N_Vector y, N_Vector ydot) noexcept {
+// The derivatives of `set` (counted as level `level`'s; the other entries zero); an empty set
+// costs no evaluation.
+int MriStepper::evaluate_set(int level, const std::vector<std::size_t>& set, realtype t, N_Vector y, N_Vector ydot) {
+  if (set.empty()) {
+    N_VConst(0.0, ydot);
+    return 0;
+  }
+  LevelStats& stats = level_stats_[static_cast<std::size_t>(level)];
+  ++stats.rhs_evals;
+  stats.particle_evals += static_cast<long>(set.size());
+  const int code = system_.rhs_subset(t, N_VGetArrayPointer(y), set, N_VGetArrayPointer(ydot));
+  if (code != 0)
+    callback_error_ = "level " + std::to_string(level) + " rhs returned " + std::to_string(code) + " at t=" +
+                      at_time(t) + ": " + system_.last_error();
+  return code;
+}
+
+// Level `level`'s derivatives, plus the forcing of the level above inside its wrapper's evolve.
+int MriStepper::evaluate(int level, realtype t, N_Vector y, N_Vector ydot) noexcept {
   try {
     if (opts_.interrupt && !interrupted_) interrupted_ = opts_.interrupt();
   } catch (...) {
     interrupted_ = true;
   }
   if (interrupted_) return -1;
-  const std::vector<std::size_t>& set = sets_[level];
-  if (set.empty()) {
-    N_VConst(0.0, ydot);
-    return 0;
-  }
-  ++level_stats_[level].rhs_evals;
-  level_stats_[level].particle_evals += static_cast<long>(set.size());
+  const auto k = static_cast<std::size_t>(level);
   try {
-    const int code = system_.rhs_subset(t, N_VGetArrayPointer(y), set, N_VGetArrayPointer(ydot));
-    if (code == 0) {  // the latest values of this set's derivatives
-      const Real* f = N_VGetArrayPointer(ydot);
-      for (std::size_t k : set_entries_[level]) approx_f_[k] = f[k];
-      approx_valid_[level] = true;
-    }
-    if (code != 0)
-      callback_error_ = std::string(level == kSlow ? "slow" : "fast") + " rhs returned " + std::to_string(code) +
-                        " at t=" + at_time(t) + ": " + system_.last_error();
-    return code;
+    const int code = evaluate_set(level, sets_[k], t, y, ydot);
+    if (code != 0) return code;
+    const Real* f = N_VGetArrayPointer(ydot);  // the latest values of this set's derivatives
+    for (std::size_t e : set_entries_[k]) approx_f_[e] = f[e];
+    approx_valid_[k] = true;
+    if (forcing_on_[k]) check(MRIStepInnerStepper_AddForcing(inner_[k].get(), t, ydot), "MRIStepInnerStepper_AddForcing");
+    return 0;
   } catch (...) {
-    callback_error_ = current_exception_message(level == kSlow ? "slow rhs" : "fast rhs");
+    callback_error_ = current_exception_message("level " + std::to_string(level) + " rhs");
   }
   return -1;
 }
 
-int MriStepper::slow_cb(realtype t, N_Vector y, N_Vector ydot, void* self) {
-  return static_cast<MriStepper*>(self)->evaluate(kSlow, t, y, ydot);
+// f_level + ... + f_{K-1} in one subset evaluation (a wrapper's full RHS, without forcing).
+int MriStepper::evaluate_from(int level, realtype t, N_Vector y, N_Vector ydot) noexcept {
+  try {
+    std::vector<std::size_t> set;
+    for (int k = level; k < levels(); ++k) set.insert(set.end(), sets_[static_cast<std::size_t>(k)].begin(), sets_[static_cast<std::size_t>(k)].end());
+    std::sort(set.begin(), set.end());
+    return evaluate_set(level, set, t, y, ydot);
+  } catch (...) {
+    callback_error_ = current_exception_message("level " + std::to_string(level) + " full rhs");
+  }
+  return -1;
 }
 
-int MriStepper::fast_cb(realtype t, N_Vector y, N_Vector ydot, void* self) {
-  return static_cast<MriStepper*>(self)->evaluate(kFast, t, y, ydot);
+// Level `level`'s MRIStep from t0 (its own current time and state: like ARKStep, an inner
+// stepper does not read y on entry, which is the outer method's work vector) to tout (the stop
+// time), with the forcing of this stage; the result in y. Reset first, at its own state: MRIStep
+// reuses the slow RHS of its last step's end as its next first stage, and that was taken with
+// the previous stage's forcing (ARKStep, the fastest level, evaluates every stage afresh).
+int MriStepper::evolve_level(int level, realtype t0, realtype tout, N_Vector y) noexcept {
+  const auto k = static_cast<std::size_t>(level);
+  void* mem = mems_[k].get();
+  const VectorPtr own = make_view(level_y_[k].size(), level_y_[k].data(), ctx_.get());
+  if (MRIStepReset(mem, t0, own.get()) < 0 || MRIStepSetStopTime(mem, tout) < 0) return -1;
+  forcing_on_[k] = 1;
+  realtype t_reached = 0;
+  const int flag = MRIStepEvolve(mem, tout, y, &t_reached, ARK_NORMAL);
+  forcing_on_[k] = 0;
+  const Real* out = N_VGetArrayPointer(y);
+  std::copy(out, out + level_y_[k].size(), level_y_[k].begin());
+  return flag < 0 ? flag : 0;
 }
 
-// After every accepted slow step, before MRIStep evaluates f_slow there: the new partition.
-int MriStepper::step_done_cb(realtype t, N_Vector y, void* self) {
-  auto* s = static_cast<MriStepper*>(self);
+int MriStepper::level_cb(realtype t, N_Vector y, N_Vector ydot, void* context) {
+  const auto* c = static_cast<const LevelContext*>(context);
+  return c->stepper->evaluate(c->level, t, y, ydot);
+}
+
+int MriStepper::inner_evolve_cb(MRIStepInnerStepper s, realtype t0, realtype tout, N_Vector y) {
+  void* content = nullptr;
+  if (MRIStepInnerStepper_GetContent(s, &content) != 0) return -1;
+  const auto* c = static_cast<const LevelContext*>(content);
+  return c->stepper->evolve_level(c->level, t0, tout, y);
+}
+
+int MriStepper::inner_full_rhs_cb(MRIStepInnerStepper s, realtype t, N_Vector y, N_Vector f, int) {
+  void* content = nullptr;
+  if (MRIStepInnerStepper_GetContent(s, &content) != 0) return -1;
+  const auto* c = static_cast<const LevelContext*>(content);
+  return c->stepper->evaluate_from(c->level, t, y, f);
+}
+
+// The outer method's reset to a stage it computed itself: (t, y) is valid here.
+int MriStepper::inner_reset_cb(MRIStepInnerStepper s, realtype t, N_Vector y) {
+  void* content = nullptr;
+  if (MRIStepInnerStepper_GetContent(s, &content) != 0) return -1;
+  const auto* c = static_cast<const LevelContext*>(content);
+  std::vector<Real>& own = c->stepper->level_y_[static_cast<std::size_t>(c->level)];
+  std::copy(N_VGetArrayPointer(y), N_VGetArrayPointer(y) + own.size(), own.begin());
+  return MRIStepReset(c->stepper->mems_[static_cast<std::size_t>(c->level)].get(), t, y);
+}
+
+// After every accepted slow step, before MRIStep evaluates f_0 there: the new partition.
+int MriStepper::step_done_cb(realtype t, N_Vector y, void* context) {
+  MriStepper* s = static_cast<LevelContext*>(context)->stepper;
   try {
     s->repartition(t, N_VGetArrayPointer(y));
     return 0;
@@ -250,27 +396,58 @@ std::string MriStepper::failure_text(int flag) const {
   return why;
 }
 
+// Steps taken by level `level`'s integrator since it was created (none without one).
+long MriStepper::steps_of(int level) const {
+  long n = 0;
+  if (level >= depth_) return 0;
+  if (level == depth_ - 1) ARKStepGetNumSteps(fast_mem_.get(), &n);
+  else MRIStepGetNumSteps(level == 0 ? mem_.get() : mems_[static_cast<std::size_t>(level)].get(), &n);
+  return n;
+}
+
+// The SUNDIALS objects, outside in: each MRIStep refers to its inner stepper, which refers to the
+// integrator it wraps.
+void MriStepper::release() {
+  mem_.reset();
+  for (std::size_t k = 1; k < mems_.size(); ++k) inner_[k].reset(), mems_[k].reset();
+  fast_inner_.reset();
+  fast_mem_.reset();
+}
+
+// Every integrator made afresh at (t_, y_), depth_ levels (the steps so far kept in the counts).
+void MriStepper::rebuild() {
+  for (int k = 0; k < levels(); ++k) base_steps_[static_cast<std::size_t>(k)] += steps_of(k);
+  release();
+  depth_ = wanted_depth();
+  create(t_);
+}
+
 void MriStepper::resize(const Resized& state) {
   if (state.y == nullptr) throw std::invalid_argument("resize: no state");
-  long slow = 0, fast = 0;
-  MRIStepGetNumSteps(mem_.get(), &slow);
-  ARKStepGetNumSteps(fast_mem_.get(), &fast);
-  base_slow_steps_ += slow, base_fast_steps_ += fast;
-  mem_.reset();  // in this order: MRIStep refers to the inner stepper, which refers to ARKStep
-  inner_.reset();
-  fast_mem_.reset();
   y_.assign(state.y, state.y + system_.size());
   sets_valid_ = false;
-  approx_valid_[kSlow] = approx_valid_[kFast] = false;
+  approx_valid_.assign(approx_valid_.size(), false);
   restart_pending_ = false;
   repartition(t_, y_.data());  // a new particle count bins afresh
-  create(t_);
+  rebuild();
 }
 
 AdvanceStatus MriStepper::end_at_last_step(Real* y, Real& t, AdvanceStatus status) {
   std::copy(y_.begin(), y_.end(), y);
   t = t_;
   return status;
+}
+
+// Adaptive: new level steps after a repartition (ARKODE takes h = hin at every fixed step: the
+// next step is that of a fresh MRIStep).
+void MriStepper::set_steps() {
+  for (int k = 0; k < depth_; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    if (split_.h(k) == h_set_[ku]) continue;
+    if (k == depth_ - 1) check(ARKStepSetFixedStep(fast_mem_.get(), split_.h(k)), "ARKStepSetFixedStep");
+    else check(MRIStepSetFixedStep(k == 0 ? mem_.get() : mems_[ku].get(), split_.h(k)), "MRIStepSetFixedStep");
+    h_set_[ku] = split_.h(k);
+  }
 }
 
 // One slow step towards t_out (MRIStep lands on its stop time: the last step is shortened).
@@ -285,12 +462,11 @@ AdvanceStatus MriStepper::step(Real t_out, Real* y, Real& t) {
   }
   interrupted_ = false;
   callback_error_.clear();
-  if (split_.h_slow() != h_slow_set_ || split_.h_fast() != h_fast_set_) {  // adaptive: new steps
-    // ARKODE takes h = hin at every fixed step: the next step is that of a fresh MRIStep.
-    check(MRIStepSetFixedStep(mem_.get(), split_.h_slow()), "MRIStepSetFixedStep");
-    check(ARKStepSetFixedStep(fast_mem_.get(), split_.h_fast()), "ARKStepSetFixedStep");
-    h_slow_set_ = split_.h_slow(), h_fast_set_ = split_.h_fast();
-  }
+  // The deepest occupied level moved: the integrators afresh at (t_, y_), which is exactly the
+  // next step of the old ones (each slow step starts as a fresh MRIStep's first; its slow RHS at
+  // t_ is evaluated once more).
+  if (wanted_depth() != depth_) rebuild();
+  set_steps();
   check(MRIStepSetStopTime(mem_.get(), t_out), "MRIStepSetStopTime");
   auto yout = make_view(y_.size(), y, ctx_.get());
   realtype t_reached = t_;
@@ -311,20 +487,19 @@ AdvanceStatus MriStepper::step(Real t_out, Real* y, Real& t) {
 
 AdvanceStatus MriStepper::advance(Real t_out, Real* y, Real& t) { return detail::advance_by_steps(*this, t_out, y, t); }
 
-// Level 0 slow (steps, f_slow evaluations), level 1 fast (inner steps, f_fast evaluations);
-// rhs_evals counts both (the subset calls); particle_evals is filled in by the guard.
+// Level 0 slow (steps, f_0 evaluations), level k its MRIStep's or (the last) the ARKStep's
+// steps and f_k evaluations (a wrapper's full RHS counts as its level's); rhs_evals counts all
+// the subset calls; particle_evals is filled in by the guard.
 StepperStats MriStepper::stats() const {
   StepperStats s;
-  long slow_steps = 0, fast_steps = 0;
-  MRIStepGetNumSteps(mem_.get(), &slow_steps);
-  ARKStepGetNumSteps(fast_mem_.get(), &fast_steps);
-  slow_steps += base_slow_steps_, fast_steps += base_fast_steps_;
-  s.steps = s.attempts = slow_steps;
-  s.levels = {level_stats_[kSlow], level_stats_[kFast]};
-  s.levels[kSlow].steps = slow_steps;
-  s.levels[kFast].steps = fast_steps;
-  s.rhs_evals = level_stats_[kSlow].rhs_evals + level_stats_[kFast].rhs_evals;
-  s.particle_evals = level_stats_[kSlow].particle_evals + level_stats_[kFast].particle_evals;
+  s.levels = level_stats_;
+  for (int k = 0; k < levels(); ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    s.levels[ku].steps = steps_of(k) + base_steps_[ku];
+    s.rhs_evals += level_stats_[ku].rhs_evals;
+    s.particle_evals += level_stats_[ku].particle_evals;
+  }
+  s.steps = s.attempts = s.levels.front().steps;
   MRIStepGetLastStep(mem_.get(), &s.last_dt);
   s.current_time = t_;
   return s;

@@ -76,6 +76,9 @@ void validate_mri(const OdeSystem& system, const StepperOptions& o) {
   require(o, o.mri_slow_fraction > 0 && o.mri_slow_fraction <= 1, "mri_slow_fraction",
           number_text(o.mri_slow_fraction), "must be in (0, 1]");
   require(o, o.mri_ratio >= 1, "mri_ratio", std::to_string(o.mri_ratio), "must be >= 1");
+  require(o, o.mri_levels >= 2 && o.mri_levels <= 8, "mri_levels", std::to_string(o.mri_levels), "must be in 2..8");
+  require(o, o.mri_levels == 2 || !(o.fixed_dt > 0) || o.mri_ratio >= 2, "mri_ratio", std::to_string(o.mri_ratio),
+          "must be >= 2 with mri_levels > 2 and fixed_dt (level k steps by fixed_dt / mri_ratio^k)");
   require(o, is_erk(o.mri_fast_table), "mri_fast_table", o.mri_fast_table, "not an ERK table of SUNDIALS 6.4.1");
   require(o, o.partition_hysteresis >= 0, "partition_hysteresis", number_text(o.partition_hysteresis), "must be >= 0");
   require(o, system.supports_subsets(), "method", o.method,
@@ -191,9 +194,14 @@ std::string describe(const StepperOptions& o) {
   }
   if (o.method.rfind("mri-", 0) == 0) {
     s << "MRIStep " << o.method.substr(4);
-    if (o.fixed_dt > 0) s << ", slow dt=" << o.fixed_dt << ", fast " << o.mri_fast_table << " dt=slow/" << o.mri_ratio;
+    if (o.mri_levels > 2) s << ", " << o.mri_levels << " nested levels";
+    if (o.fixed_dt > 0) {
+      s << ", slow dt=" << o.fixed_dt << ", fast " << o.mri_fast_table << " dt=slow/" << o.mri_ratio;
+      if (o.mri_levels > 2) s << '^' << o.mri_levels - 1;
+    }
     else s << ", slow dt=max_dt/2^l (" << o.mri_slow_fraction << " of the particles slow), max_dt=" << o.max_dt
-           << ", fast " << o.mri_fast_table << " dt=slow/max(" << o.mri_ratio << ", 2^levels)";
+           << ", fast " << o.mri_fast_table << " dt=slow/max(" << o.mri_ratio << ", 2^levels)"
+           << (o.mri_levels > 2 ? " per level" : "");
     s << ", levels from " << o.cfl_safety << " x particle_stable_dt, hysteresis " << o.partition_hysteresis
       << ", max_steps=" << o.max_steps;
     return s.str();

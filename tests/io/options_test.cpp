@@ -235,13 +235,15 @@ TEST(CoreOptions, StepperNamesAndMapping) {
   EXPECT_EQ(s.fixed_dt, 0.001);
   const char* mri_argv[] = {"x", "--stepper", "mri-ARKODE_MRI_GARK_ERK45a", "--mri-ratio", "16",
                             "--mri-fast-table", "ARKODE_DORMAND_PRINCE_7_4_5", "--max-dt", "0.5",
-                            "--partition-hysteresis", "0.125"};
+                            "--partition-hysteresis", "0.125", "--mri-levels", "3"};
   EXPECT_EQ(s.partition_hysteresis, StepperOptions{}.partition_hysteresis);  // the default passed on
-  ASSERT_EQ(p.parse(11, mri_argv), ParseStatus::ok);
+  EXPECT_EQ(s.mri_levels, 2);
+  ASSERT_EQ(p.parse(13, mri_argv), ParseStatus::ok);
   const StepperOptions m = stepper_options(o);
   EXPECT_EQ(m.partition_hysteresis, 0.125);
   EXPECT_EQ(m.method, "mri-ARKODE_MRI_GARK_ERK45a");
   EXPECT_EQ(m.mri_ratio, 16);
+  EXPECT_EQ(m.mri_levels, 3);
   EXPECT_EQ(m.mri_fast_table, "ARKODE_DORMAND_PRINCE_7_4_5");
   EXPECT_EQ(m.max_dt, 0.5);
 }

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "oscillator_ensemble.hpp"
+#include "resize_check.hpp"
 #include "switching_ensemble.hpp"
 #include "sphark/integrate/stepper.hpp"
 
@@ -191,36 +192,14 @@ TEST(MriBookkeeping, ARestartCarriesThePartition) {
   EXPECT_NE(y_fresh, y_continued);  // the test can tell: without the partition the steps differ
 }
 
-// resize() between slow steps (the time loop's particle changes), here to the same state: the
-// run goes on as a fresh stepper at (t1, y(t1)) would, bit for bit, and counts its steps on.
 TEST(MriBookkeeping, ResizeStartsMriStepAfreshAtTheNewState) {
-  const Real t1 = 0.5, t2 = 1.0;
-  OscillatorEnsemble a_sys = ensemble(), b_sys = ensemble();
-  const std::vector<Real> y0 = initial_state(8);
-  auto a = make_stepper(a_sys, mri(), 0, y0.data());
-  std::vector<Real> y1(y0.size()), ya(y0.size()), yb(y0.size());
-  Real t = 0;
-  ASSERT_EQ(a->advance(t1, y1.data(), t), AdvanceStatus::Reached);
-  a->resize({y1.data(), nullptr, nullptr});
-  ASSERT_EQ(a->advance(t2, ya.data(), t), AdvanceStatus::Reached) << a->failure_reason();
-  EXPECT_EQ(a->stats().steps, 20);
-  auto b = make_stepper(b_sys, mri(), t1, y1.data());
-  ASSERT_EQ(b->advance(t2, yb.data(), t), AdvanceStatus::Reached);
-  for (std::size_t k = 0; k < ya.size(); ++k) EXPECT_EQ(ya[k], yb[k]) << "entry " << k;
+  expect_resize_continues_as_fresh(ensemble, mri(), initial_state(8), 0.5, 1.0, 20);
 }
 
 TEST(MriBookkeeping, BadOptionsAreOneLineInvalidArguments) {
   OscillatorEnsemble sys = ensemble();
   const std::vector<Real> y0 = initial_state(sys.n());
-  auto expect_error = [&](StepperOptions o, const std::string& what) {
-    try {
-      make_stepper(sys, o, 0, y0.data());
-      ADD_FAILURE() << "no error for " << what;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
-    }
-  };
+  auto expect_error = [&](const StepperOptions& o, const std::string& what) { expect_invalid_argument(sys, o, y0, what); };
   StepperOptions o = mri();
   o.method = "mri-ARKODE_NO_SUCH_TABLE";
   expect_error(o, "method=mri-ARKODE_NO_SUCH_TABLE: unknown MRI coupling table");

@@ -1,29 +1,47 @@
 #pragma once
 // Oscillator ensembles whose reported stable steps change in time (their dynamics does not):
-// only the partition moves particles between levels (repartition and restart tests).
+// only the partition moves particles between levels (repartition and restart tests); and the
+// check of an option error.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <limits>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "oscillator_ensemble.hpp"
+#include "sphark/integrate/stepper.hpp"
 
 namespace sphark::test {
 
-// Particle 0 reports the stable step 0.01 (fast) from t_switch on.
+// Particle 0 reports the stable step `step` (0.01: fast) from t_switch on.
 class SwitchingEnsemble : public OscillatorEnsemble {
  public:
-  explicit SwitchingEnsemble(Real t_switch)
-      : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_switch_(t_switch) {}
+  explicit SwitchingEnsemble(Real t_switch, Real step = 0.01)
+      : OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), t_switch_(t_switch), step_(step) {}
   int particle_stable_dt(Real t, const Real* y, const Real* ydot, Real* dt) override {
     OscillatorEnsemble::particle_stable_dt(t, y, ydot, dt);
-    if (t >= t_switch_) dt[0] = 0.01;
+    if (t >= t_switch_) dt[0] = step_;
     return 0;
   }
 
  private:
-  Real t_switch_;
+  Real t_switch_, step_;
 };
+
+// make_stepper(sys, o, 0, y0) throws std::invalid_argument, one line, containing `what`.
+inline void expect_invalid_argument(OdeSystem& sys, const StepperOptions& o, const std::vector<Real>& y0,
+                                    const std::string& what) {
+  try {
+    make_stepper(sys, o, 0, y0.data());
+    ADD_FAILURE() << "no error for " << what;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+}
 
 // Particle 0 reports 0.01 on [t_on, t_off) and `after` from t_off on: with `after` within the
 // hysteresis margin above a level's step it stays on the deeper level; a run that bins afresh

@@ -68,7 +68,7 @@ TEST(OptionRecords, EveryOptionWithNameTypeValueAndWhetherGiven) {
       {"out", "path"},         {"t-end", "real"},       {"stepper", "string"},    {"rtol", "real"},
       {"atol", "real"},        {"dt", "real"},          {"step-cap", "switch"},   {"max-dt", "real"},
       {"velocity-tolerance", "real"},
-      {"mri-ratio", "integer"}, {"mri-fast-table", "string"}, {"partition-hysteresis", "real"}, {"block-cycles", "string"},
+      {"mri-ratio", "integer"}, {"mri-levels", "integer"}, {"mri-fast-table", "string"}, {"partition-hysteresis", "real"}, {"block-cycles", "string"},
       {"output-every", "real"},
       {"threads", "integer"},
       {"no-render", "flag"},   {"profile", "flag"},     {"seed", "integer"},      {"kernel", "string"},
@@ -83,7 +83,7 @@ TEST(OptionRecords, EveryOptionWithNameTypeValueAndWhetherGiven) {
   }
   EXPECT_EQ(to_json_line(r.json),
             "{\"out\": \"out\", \"t-end\": 0.25, \"stepper\": \"ARKODE_DORMAND_PRINCE_7_4_5\", \"rtol\": 1e-06, "
-            "\"atol\": 1e-09, \"dt\": 0, \"step-cap\": true, \"max-dt\": 0, \"velocity-tolerance\": 0, \"mri-ratio\": 4, "
+            "\"atol\": 1e-09, \"dt\": 0, \"step-cap\": true, \"max-dt\": 0, \"velocity-tolerance\": 0, \"mri-ratio\": 4, \"mri-levels\": 2, "
             "\"mri-fast-table\": \"ARKODE_ZONNEVELD_5_3_4\", \"partition-hysteresis\": 0.25, \"block-cycles\": \"fixed\", \"output-every\": 0, \"threads\": 0, \"no-render\": true, \"profile\": false, "
             "\"seed\": 7, \"kernel\": \"cubic\", \"cleaning\": true, \"resolutions\": [25, 50], \"counts\": [1, 2], "
             "\"restart\": \"\"}");

@@ -176,6 +176,7 @@ struct CoreOptions {
   // StepperOptions::velocity_tolerance); 0 = off.
   Real velocity_tolerance = 0;
   int mri_ratio = 4;
+  int mri_levels = 2;
   std::string mri_fast_table = "ARKODE_ZONNEVELD_5_3_4";
   // --partition-hysteresis: a particle's level (leapfrog-blocks, mri-<table>) grows only with this
   // margin (StepperOptions::partition_hysteresis).
@@ -197,7 +198,7 @@ void add_core_options(OptionParser& p, CoreOptions& o);
 std::vector<std::string> core_stepper_names();
 
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt,
-// cap_by_stability = step_cap, max_dt, velocity_tolerance, mri_ratio, mri_fast_table,
+// cap_by_stability = step_cap, max_dt, velocity_tolerance, mri_ratio, mri_levels, mri_fast_table,
 // partition_hysteresis, fit_block_cycles = (block_cycles == "fitted").
 StepperOptions stepper_options(const CoreOptions& o);
 // The same for one run of `system`: when --stepper ark-imex meets a run without a stiff part

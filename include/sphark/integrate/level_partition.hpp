@@ -1,8 +1,9 @@
 #pragma once
 // Particles binned by their own stable step into power-of-two levels (issue #17; the block
 // steps of Phantom, Price et al. 2018 PASA 35 e031, §2.3.4, and the slow/fast split of MRIStep).
-// Level l steps by dt_top / 2^l; a particle with stable step dt (already scaled by the CFL
-// safety factor) needs the smallest l with dt_top / 2^l <= dt (clamped to max_level).
+// Level l steps by dt_top / 2^l (or dt_top / ratio^l: the fixed-step levels of nested MRIStep);
+// a particle with stable step dt (already scaled by the CFL safety factor) needs the smallest l
+// with dt_top / 2^l <= dt (clamped to max_level).
 // Hysteresis: a particle moves to a deeper level (shorter step) at once, but back to a
 // shallower one only when its stable step exceeds that level's step by the factor
 // (1 + hysteresis), so particles near a bin edge do not flip every step.
@@ -16,8 +17,9 @@ namespace sphark {
 
 class LevelPartition {
  public:
-  // Throws std::invalid_argument (one line) for dt_top <= 0, max_level < 0, hysteresis < 0.
-  LevelPartition(Real dt_top, int max_level, Real hysteresis);
+  // Throws std::invalid_argument (one line) for dt_top <= 0, max_level < 0, hysteresis < 0,
+  // ratio < 2.
+  LevelPartition(Real dt_top, int max_level, Real hysteresis, int ratio = 2);
 
   // The level each particle needs for its stable step dt[i] (> 0, +inf allowed), without
   // hysteresis; throws std::invalid_argument for a non-positive or NaN step.
@@ -38,7 +40,7 @@ class LevelPartition {
   std::size_t size() const { return levels_.size(); }
   int deepest() const;  // the deepest occupied level (0 when empty)
   Real dt_top() const { return dt_top_; }
-  Real level_dt(int l) const;  // dt_top / 2^l
+  Real level_dt(int l) const;  // dt_top / ratio^l
   // The particles (ascending) at level l, at levels >= l, at levels < l.
   std::vector<std::size_t> at(int l) const;
   std::vector<std::size_t> at_least(int l) const;
@@ -48,6 +50,7 @@ class LevelPartition {
   Real dt_top_;
   int max_level_;
   Real hysteresis_;
+  int ratio_;
   std::vector<int> levels_;
 };
 

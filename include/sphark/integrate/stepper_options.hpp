@@ -98,9 +98,13 @@ struct StepperOptions {
   //    step is the level holding (with the shallower ones) mri_slow_fraction of the particles,
   //    the deeper ones are fast, the fast step is the deepest level's (at least slow / mri_ratio);
   //    MRIStep restarts when these steps change.
+  // mri_levels > 2 nests MRISteps (mri_stepper.cpp): level k steps by fixed_dt / mri_ratio^k
+  // (mri_ratio >= 2), or, adaptive, the power-of-two levels from the slow level to the deepest are
+  // shared out evenly among the fast MRI levels (mri_split.hpp).
   // A particle moves to a longer step only when its stable step exceeds it by the factor
   // (1 + partition_hysteresis) (also the block steps of "leapfrog-blocks").
   int mri_ratio = 4;
+  int mri_levels = 2;
   std::string mri_fast_table = "ARKODE_ZONNEVELD_5_3_4";
   Real mri_slow_fraction = 0.9;
   Real partition_hysteresis = 0.25;
