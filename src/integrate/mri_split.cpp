@@ -27,7 +27,7 @@ MriSplit::MriSplit(const StepperOptions& o)
   if (!adaptive_)
     for (int k = 0; k < count(); ++k) h_[static_cast<std::size_t>(k)] = k == 0 ? o.fixed_dt : h_[k - 1] / o.mri_ratio;
   else
-    set_bounds(0);
+    set_adaptive_steps();  // (all on the top level until the first update)
 }
 
 // The shallowest level l with at least slow_fraction of the particles on levels <= l.
@@ -42,15 +42,25 @@ int MriSplit::slow_level() const {
   return kMaxLevel;
 }
 
-// Adaptive: the power-of-two bounds of the MRI levels and their steps (mri_split.hpp).
+// Adaptive: the power-of-two bounds of the MRI levels (mri_split.hpp).
 void MriSplit::set_bounds(int l) {
   const int K = count(), span = std::max(0, levels_.deepest() - l);
-  bound_[0] = l;
-  h_[0] = levels_.level_dt(l);
-  for (int k = 1; k < K; ++k) {
+  for (int k = 0; k < K; ++k) bound_[static_cast<std::size_t>(k)] = l + (k * span + K - 2) / (K - 1);  // l + ceil(k span / (K-1))
+}
+
+// Adaptive: level k's step, k < depth: T / 2^bound_k, at most h_0 / mri_ratio^(k / (depth-1)) (the
+// deepest integrated level at least mri_ratio below the slow step); deeper levels as the deepest.
+void MriSplit::set_adaptive_steps() {
+  const int deepest = depth_ - 1;
+  h_[0] = levels_.level_dt(bound_[0]);
+  for (int k = 1; k < count(); ++k) {
     const auto ku = static_cast<std::size_t>(k);
-    bound_[ku] = l + (k * span + K - 2) / (K - 1);  // l + ceil(k span / (K - 1))
-    h_[ku] = h_[ku - 1] / std::max(mri_ratio_, 1 << std::min(30, bound_[ku] - bound_[ku - 1]));
+    if (k > deepest) {
+      h_[ku] = h_[ku - 1];
+      continue;
+    }
+    const Real floor = k == deepest ? h_[0] / mri_ratio_ : h_[0] / std::pow(Real(mri_ratio_), Real(k) / deepest);
+    h_[ku] = std::min(levels_.level_dt(bound_[ku]), floor);
   }
 }
 
@@ -85,6 +95,10 @@ bool MriSplit::update(std::span<const Real> stable, Real t) {
   built_ = true;
   for (auto& s : sets_) s.clear();
   for (std::size_t i = 0; i < levels_.size(); ++i) sets_[static_cast<std::size_t>(level_of(i))].push_back(i);
+  depth_ = 2;
+  for (int k = 2; k < count(); ++k)
+    if (!sets_[static_cast<std::size_t>(k)].empty()) depth_ = k + 1;
+  if (adaptive_) set_adaptive_steps();
   return true;
 }
 

@@ -8,10 +8,12 @@
 // Adaptive slow step (fixed_dt = 0, max_dt = T): the particles are binned on the power-of-two
 // levels of T (LevelPartition, hysteresis); the slow level l* is the shallowest level holding,
 // with all shallower ones, at least mri_slow_fraction of the particles, d the deepest occupied.
-// MRI level k >= 1 holds the power-of-two levels up to l* + ceil(k (d - l*) / (K - 1)) (level
-// K-1 up to d); its step is level k-1's divided by max(mri_ratio, 2^(its span in power-of-two
-// levels)), so every particle steps within its stable step. With K = 2: slow h = T / 2^l*, fast
-// h / max(mri_ratio, 2^(d - l*)).
+// MRI level k >= 1 holds the power-of-two levels up to b_k = l* + ceil(k (d - l*) / (K - 1))
+// (level K-1 up to d); with D the deepest MRI level holding a particle (at least 1), level k <= D
+// steps by min(T / 2^b_k, h / mri_ratio^(k/D)), h = T / 2^l* the slow step: every particle steps
+// within its stable step, the deepest at least mri_ratio times faster than the slow one. Deeper
+// levels are empty (the stepper builds no integrator for them). With K = 2: fast h / max(mri_ratio,
+// 2^(d - l*)).
 #include <cstddef>
 #include <span>
 #include <string>
@@ -35,6 +37,7 @@ class MriSplit {
   const std::vector<int>& levels() const { return levels_.levels(); }
 
   int count() const { return static_cast<int>(sets_.size()); }                // K
+  int depth() const { return depth_; }  // levels down to the deepest occupied one (at least 2)
   const std::vector<std::size_t>& set(int k) const { return sets_[static_cast<std::size_t>(k)]; }  // ascending
   int level_of(std::size_t particle) const;                                      // its MRI level
   Real h(int k) const { return h_[static_cast<std::size_t>(k)]; }               // level k's step
@@ -45,6 +48,7 @@ class MriSplit {
  private:
   int slow_level() const;
   void set_bounds(int slow_level);
+  void set_adaptive_steps();
   void check_stable(std::span<const Real> stable, Real t) const;
 
   bool adaptive_;
@@ -55,6 +59,7 @@ class MriSplit {
   std::vector<int> bound_;
   std::vector<Real> h_;
   bool built_ = false;
+  int depth_ = 2;
   std::vector<std::vector<std::size_t>> sets_;
 };
 

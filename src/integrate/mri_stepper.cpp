@@ -79,8 +79,6 @@ class MriStepper final : public Stepper {
 
  private:
   int levels() const { return split_.count(); }
-  // The levels down to the deepest one holding a particle (at least two): the integrators built.
-  int wanted_depth() const;
   bool all_approx_valid() const {
     return std::all_of(approx_valid_.begin(), approx_valid_.end(), [](bool v) { return v; });
   }
@@ -165,15 +163,8 @@ MriStepper::MriStepper(OdeSystem& system, const StepperOptions& opts, Real t0, c
     }
   }
   repartition(t0, y0);
-  depth_ = wanted_depth();
+  depth_ = split_.depth();
   create(t0);
-}
-
-int MriStepper::wanted_depth() const {
-  int depth = 2;
-  for (int k = 2; k < levels(); ++k)
-    if (!sets_[static_cast<std::size_t>(k)].empty()) depth = k + 1;
-  return depth;
 }
 
 void MriStepper::check(int flag, const char* call) const {
@@ -418,7 +409,7 @@ void MriStepper::release() {
 void MriStepper::rebuild() {
   for (int k = 0; k < levels(); ++k) base_steps_[static_cast<std::size_t>(k)] += steps_of(k);
   release();
-  depth_ = wanted_depth();
+  depth_ = split_.depth();
   create(t_);
 }
 
@@ -465,7 +456,7 @@ AdvanceStatus MriStepper::step(Real t_out, Real* y, Real& t) {
   // The deepest occupied level moved: the integrators afresh at (t_, y_), which is exactly the
   // next step of the old ones (each slow step starts as a fresh MRIStep's first; its slow RHS at
   // t_ is evaluated once more).
-  if (wanted_depth() != depth_) rebuild();
+  if (split_.depth() != depth_) rebuild();
   set_steps();
   check(MRIStepSetStopTime(mem_.get(), t_out), "MRIStepSetStopTime");
   auto yout = make_view(y_.size(), y, ctx_.get());

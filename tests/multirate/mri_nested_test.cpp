@@ -158,6 +158,24 @@ TEST(MriNested, AdaptiveLevelsShareThePowerOfTwoLevels) {
   EXPECT_NEAR(error, error2, 0.01 * error2);
 }
 
+// A short span: power-of-two levels 0, 1, 2 (w = 1, 3, 5; T = 0.5) become MRI levels 0, 1, 2 with
+// steps T, T/2, T/4: the deepest is mri_ratio = 4 below the slow step, as in a two-level run, not
+// 4 below the middle. Each slow step: 3 stages of T/3, one middle step each (T/2 > T/3), whose 3
+// stages of T/9 take one fast step each: 6 middle and 18 fast steps in all.
+TEST(MriNested, AShortSpanSharesTheRatioAmongTheLevels) {
+  OscillatorEnsemble sys({1, 1, 1, 1, 3, 3, 5, 5}, 0.3);
+  StepperOptions o = nested("ARKODE_MRI_GARK_ERK33a", 0);
+  o.max_dt = 0.5;
+  o.mri_slow_fraction = 0.5;
+  o.mri_ratio = 4;
+  StepperStats s;
+  run(sys, o, initial_state(sys, false), 1.0, &s);
+  ASSERT_EQ(s.levels.size(), 3u);
+  EXPECT_EQ(s.steps, 2);
+  EXPECT_EQ(s.levels[1].steps, 6);
+  EXPECT_EQ(s.levels[2].steps, 18);
+}
+
 // Levels deeper than the deepest occupied one get no integrator: three levels with the third
 // empty are the two-level run, bit for bit (adaptive: power-of-two levels 0 and 1 only).
 TEST(MriNested, AnEmptyDeepestLevelIsTheTwoLevelRun) {
