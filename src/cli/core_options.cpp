@@ -29,7 +29,7 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
   p.add("--mri-ratio", &o.mri_ratio, "--stepper mri-<table>: slow step / fast step", Positive{});
   p.add("--mri-levels", &o.mri_levels,
         "--stepper mri-<table>: levels of nested MRIStep (2 = slow/fast; more need --mri-ratio >= 2 with --dt)",
-        Positive{});
+        Range{2, 8});
   p.add("--mri-fast-table", &o.mri_fast_table, "--stepper mri-<table>: the fast integrator's ERK table",
         OneOf{erk_table_names()});
   p.add("--partition-hysteresis", &o.partition_hysteresis,

@@ -122,6 +122,8 @@ TEST(Options, EachBadInputIsOneLine) {
                      "water_drop: --t-end: bad value '0' (expected a positive real number)");
   expect_usage_error({"--dt=-1e-3"},
                      "water_drop: --dt: bad value '-1e-3' (expected a non-negative real number)");
+  expect_usage_error({"--mri-levels", "1"},
+                     "water_drop: --mri-levels: bad value '1' (expected an integer in [2, 8])");
   expect_usage_error({"--alpha", "nan"},
                      "water_drop: --alpha: bad value 'nan' (expected a real number)");
   expect_usage_error({"--alpha", "inf"},
