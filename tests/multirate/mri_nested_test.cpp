@@ -71,6 +71,29 @@ void expect_order(const std::string& table, bool slow_manifold) {
   }
 }
 
+// Four time scales and four levels, ratio 10: w = 1, 45, 450 and 4500; for 0.025 <= h <= 0.2,
+// 1/w_k lies in [h/10^k, h/10^(k-1)): level k holds the k-th pair at every h. (ERK45a: orders
+// 3.75, 3.90, then 2.60 at 2e-7; with ratio 20 and w = 1, 50, 900, 16200: 3.75, 3.91, 4.03, but
+// 15 s, too long for the suite.)
+TEST(MriNested, FourLevelsOrderAsTheSlowStepHalves) {
+  for (const std::string table : {"ARKODE_MRI_GARK_ERK33a", "ARKODE_MIS_KW3"}) {
+    std::vector<Real> e;
+    for (int k = 0; k < 4; ++k) {
+      OscillatorEnsemble sys({1, 1, 45, 45, 450, 450, 4500, 4500}, 0.3);
+      const std::vector<Real> y0 = initial_state(sys, true);
+      StepperStats s;
+      e.push_back(max_error(run(sys, nested(table, 0.2 / (1 << k), 10, 4), y0, 1.0, &s), sys.exact(y0, 1.0)));
+      EXPECT_EQ(s.levels.size(), 4u);
+      for (int l = 0; l < 4; ++l) EXPECT_GT(s.levels[l].rhs_evals, 0) << "level " << l;  // every level evaluated
+    }
+    for (std::size_t k = 1; k < e.size(); ++k) {
+      const Real order = std::log2(e[k - 1] / e[k]);
+      std::printf("%s slow-manifold, 4 levels: error %.3e -> %.3e, order %.2f\n", table.c_str(), e[k - 1], e[k], order);
+      EXPECT_GE(order, mri_table_order(table) - 0.3);
+    }
+  }
+}
+
 TEST(MriNested, Erk33aOrderAsTheSlowStepHalves) { expect_order("ARKODE_MRI_GARK_ERK33a", true); }
 TEST(MriNested, Erk45aOrderAsTheSlowStepHalves) { expect_order("ARKODE_MRI_GARK_ERK45a", true); }
 TEST(MriNested, MisKw3OrderAsTheSlowStepHalves) { expect_order("ARKODE_MIS_KW3", true); }
