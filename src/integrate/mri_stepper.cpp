@@ -320,8 +320,13 @@ int MriStepper::evaluate_from(int level, realtype t, N_Vector y, N_Vector ydot) 
 int MriStepper::evolve_level(int level, realtype t0, realtype tout, N_Vector y) noexcept {
   const auto k = static_cast<std::size_t>(level);
   void* mem = mems_[k].get();
-  const VectorPtr own = make_view(level_y_[k].size(), level_y_[k].data(), ctx_.get());
-  if (MRIStepReset(mem, t0, own.get()) < 0 || MRIStepSetStopTime(mem, tout) < 0) return -1;
+  try {
+    const VectorPtr own = make_view(level_y_[k].size(), level_y_[k].data(), ctx_.get());
+    if (MRIStepReset(mem, t0, own.get()) < 0 || MRIStepSetStopTime(mem, tout) < 0) return -1;
+  } catch (...) {
+    callback_error_ = current_exception_message("level " + std::to_string(level) + " reset");
+    return -1;
+  }
   forcing_on_[k] = 1;
   realtype t_reached = 0;
   const int flag = MRIStepEvolve(mem, tout, y, &t_reached, ARK_NORMAL);

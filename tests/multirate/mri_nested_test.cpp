@@ -272,6 +272,29 @@ TEST(MriNested, ThreeLevelsMatchTwoAtFewerEvaluations) {
   }
 }
 
+// An exception in the middle level's RHS (two C layers down: MRIStep, the wrapper, the middle
+// MRIStep) ends the run as Failed with its message, at the last accepted slow step.
+class ThrowingMiddle : public OscillatorEnsemble {
+ public:
+  ThrowingMiddle() : OscillatorEnsemble({1, 1, 1, 1, 50, 50, 900, 900}, 0.3) {}
+  int rhs_subset(Real t, const Real* y, std::span<const std::size_t> active, Real* ydot) override {
+    if (t > 0.3 && active.size() == 2 && active[0] == 4) throw std::runtime_error("middle level exploded");
+    return OscillatorEnsemble::rhs_subset(t, y, active, ydot);
+  }
+};
+
+TEST(MriNested, AnExceptionInTheMiddleLevelIsAFailureWithItsMessage) {
+  ThrowingMiddle sys;
+  const std::vector<Real> y0 = initial_state(sys, false);
+  auto stepper = make_stepper(sys, nested("ARKODE_MRI_GARK_ERK33a", 0.1), 0, y0.data());
+  std::vector<Real> y(y0.size());
+  Real t = 0;
+  EXPECT_EQ(stepper->advance(1.0, y.data(), t), AdvanceStatus::Failed);
+  EXPECT_NE(stepper->failure_reason().find("middle level exploded"), std::string::npos) << stepper->failure_reason();
+  EXPECT_LE(t, 0.3 + 1e-12);  // the last accepted slow step (0.2: the step to 3 x 0.1 > 0.3 ends
+  EXPECT_GE(t, 0.2 - 1e-12);  // with a middle evaluation past 0.3)
+}
+
 TEST(MriNested, BadLevelOptionsAreOneLineInvalidArguments) {
   OscillatorEnsemble sys = three_scales();
   const std::vector<Real> y0 = initial_state(sys, false);
