@@ -52,14 +52,23 @@ void add_core_options(OptionParser& p, CoreOptions& o) {
   add_core_options(p, o, core_stepper_names());
 }
 
-std::vector<std::string> core_stepper_names() {
+std::vector<std::string> global_stepper_names() {
   std::vector<std::string> names = erk_table_names();
   names.push_back("ark-imex");
   names.push_back("leapfrog");
   names.push_back("leapfrog-rev");
+  return names;
+}
+
+std::vector<std::string> core_stepper_names() {
+  std::vector<std::string> names = global_stepper_names();
   names.push_back("leapfrog-blocks");
   for (const std::string& table : mri_table_names()) names.push_back("mri-" + table);
   return names;
+}
+
+bool per_particle_stepper(std::string_view stepper) {
+  return stepper == "leapfrog-blocks" || stepper.starts_with("mri-");
 }
 
 StepperOptions stepper_options(const CoreOptions& o) {

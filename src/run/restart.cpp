@@ -114,6 +114,9 @@ void check_one_step(const OptionParser& p, std::string_view option, Real dt, Rea
 void check_step_option(const OptionParser& p, const CoreOptions& core) {
   check_one_step(p, "--dt", core.dt, core.t_end);
   check_one_step(p, "--max-dt", core.max_dt, core.t_end);
+  if (per_particle_stepper(core.stepper) && !(core.dt > 0) && !(core.max_dt > 0))
+    p.fail("--stepper", core.stepper + " needs its top step: give --max-dt (the longest step; the particles' "
+                                        "levels lie at power-of-two fractions of it) or --dt");
 }
 
 std::optional<std::string> checkpoint_number_problem(const Checkpoint& c) {

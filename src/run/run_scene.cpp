@@ -63,6 +63,7 @@ void in_system_time(Real unit, CoreOptions& core, RunControlOptions& control) {
   core.t_end *= unit;
   core.output_every *= unit;
   core.dt *= unit;
+  core.max_dt *= unit;
   control.checkpoint_every *= unit;
   control.inject_nan_at *= unit;
 }

@@ -16,6 +16,7 @@
 #include "run_example.hpp"
 #include "sphark/io/vtp_reader.hpp"
 #include "sphark/run/checkpoint.hpp"
+#include "../support/bit_equal.hpp"
 #include "../support/temp_dir.hpp"
 
 using namespace sphark;
@@ -30,10 +31,6 @@ const std::vector<std::string> kLeapfrog = {"--stepper", "leapfrog", "--dt", "1e
 std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
-}
-
-bool bit_equal(const std::vector<Real>& a, const std::vector<Real>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <cstring>
 
+#include "../support/bit_equal.hpp"
 #include "../support/temp_dir.hpp"
 #include "run_example.hpp"
 #include "split_run.hpp"
@@ -19,10 +20,6 @@ using namespace sphark::test;
 
 namespace {
 using Args = std::vector<std::string>;
-
-bool bit_equal(const std::vector<Real>& a, const std::vector<Real>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
-}
 
 Args sphere(const std::string& sinks) {
   return {"--particles", "400", "--sinks", sinks, "--output-every", "0.01", "--checkpoint-every", "0.01", "--no-render",

@@ -12,6 +12,7 @@
 #include "run_example.hpp"
 #include "sphark/io/run_record.hpp"
 #include "sphark/run/checkpoint.hpp"
+#include "../support/bit_equal.hpp"
 #include "../support/temp_dir.hpp"
 
 using namespace sphark;
@@ -50,10 +51,6 @@ void expect_setup_stop(const std::string& program, const std::vector<std::string
   EXPECT_EQ(outcome(out / "run.json"), "stopped");
   for (const auto& e : fs::recursive_directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().find("checkpoint"), std::string::npos) << e.path();
-}
-
-bool bit_equal(const std::vector<Real>& a, const std::vector<Real>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
 }
 
 }  // namespace

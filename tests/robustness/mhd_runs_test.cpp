@@ -15,6 +15,7 @@
 #include <regex>
 #include <thread>
 
+#include "../support/bit_equal.hpp"
 #include "../support/temp_dir.hpp"
 #include "interrupt_run.hpp"
 #include "run_example.hpp"
@@ -35,10 +36,6 @@ const Args kDisc = {"--spacing", "0.25", "--variant", "constrained_damped", "--n
 Args operator+(Args a, const Args& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
-}
-
-bool bit_equal(const std::vector<Real>& a, const std::vector<Real>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
 }
 
 Real max_abs_difference(const std::vector<Real>& a, const std::vector<Real>& b, std::size_t from, std::size_t to) {

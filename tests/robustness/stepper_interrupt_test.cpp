@@ -11,6 +11,7 @@
 #include <cstring>
 #include <functional>
 
+#include "../support/bit_equal.hpp"
 #include "../integrate/test_systems.hpp"
 
 namespace sphark::test {
@@ -37,10 +38,6 @@ struct Trajectory {
   StepperStats stats;
   long polls = 0;
 };
-
-bool bit_equal(const std::vector<Real>& a, const std::vector<Real>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
-}
 
 Trajectory integrate(StepperOptions o, bool poll, Real stable_dt) {
   Counted sys(stable_dt);

@@ -193,9 +193,15 @@ void add_core_options(OptionParser& p, CoreOptions& o, std::vector<std::string> 
 // The same with core_stepper_names().
 void add_core_options(OptionParser& p, CoreOptions& o);
 
-// Every --stepper name make_stepper() accepts: erk_table_names(), "ark-imex", "leapfrog",
-// "leapfrog-rev", "leapfrog-blocks", "mri-<table>" (mri_table_names()).
+// Every --stepper name make_stepper() accepts: global_stepper_names(), then the per-particle
+// steppers "leapfrog-blocks" and "mri-<table>" (mri_table_names()).
 std::vector<std::string> core_stepper_names();
+// The steppers with one step for every particle: erk_table_names(), "ark-imex", "leapfrog",
+// "leapfrog-rev" (a scene whose system evaluates no particle subsets offers these only).
+std::vector<std::string> global_stepper_names();
+// Whether `stepper` gives each particle its own step ("leapfrog-blocks", "mri-<table>"): it then
+// needs a top step, --max-dt (or --dt).
+bool per_particle_stepper(std::string_view stepper);
 
 // StepperOptions{} with method = stepper, rtol, atol = {atol}, fixed_dt = dt,
 // cap_by_stability = step_cap, max_dt, velocity_tolerance, mri_ratio, mri_levels, mri_fast_table,

@@ -10,8 +10,8 @@ namespace sphark {
 
 std::string CloudCollapseScene::description() const {
   return "magnetised molecular cloud core collapse (seed 000 IV-C, Figs. 4-6): 1 M_sun, Omega, B for mass-to-flux 5, "
-         "barotropic EOS, self-gravity, a sink; --t-end, --output-every, --diagnostics-every and --checkpoint-every "
-         "in units of the free-fall time t_ff";
+         "barotropic EOS, self-gravity, a sink; --t-end, --dt, --max-dt, --output-every, --diagnostics-every, "
+         "--checkpoint-every and --step-floor in units of the free-fall time t_ff";
 }
 
 void CloudCollapseScene::set_defaults(CoreOptions& core) {

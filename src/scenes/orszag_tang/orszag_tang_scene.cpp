@@ -129,12 +129,7 @@ void OrszagTangScene::set_defaults(CoreOptions& core) {
   core.atol = 1e-6;
 }
 
-std::vector<std::string> OrszagTangScene::stepper_names() const {
-  std::vector<std::string> s = erk_table_names();
-  s.push_back("ark-imex");
-  s.push_back("leapfrog");
-  return s;
-}
+std::vector<std::string> OrszagTangScene::stepper_names() const { return core_stepper_names(); }
 
 void OrszagTangScene::add_options(OptionParser& p) {
   p.add("--nx", &params_.nx, "particles per row of the hexagonal lattice (rows: nearest even nx*2/sqrt(3)); paper: 512",

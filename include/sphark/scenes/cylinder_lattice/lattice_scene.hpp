@@ -16,6 +16,9 @@ class CylinderLatticeScene final : public Scene {
   std::string program() const override { return "cylinder_lattice"; }
   std::string description() const override;
   void set_defaults(CoreOptions& core) override;
+  // One step for every particle: the ghost scheme evaluates no particle subsets and the run has
+  // root functions (its particles' own steps lie on one level: docs/time_integration.md).
+  std::vector<std::string> stepper_names() const override { return global_stepper_names(); }
   std::string checkpoint_help() const override {
     return "<out>/single_<map>/ or <out>/<map>/checkpoint.bin (single, medium)";
   }
