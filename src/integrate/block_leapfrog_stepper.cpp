@@ -43,6 +43,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "sphark/core/profile.hpp"
 #include "sphark/integrate/callback_errors.hpp"
@@ -312,6 +313,11 @@ AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
     const std::vector<Real> y_start = y_, dy_start = dy_;
     const std::vector<int> level_start = level_;
     const Real t_start = t_;
+    // the binning and the counts of that state: an interrupted cycle is taken again from it as
+    // if it had never begun (a restart from its checkpoint too)
+    const LevelPartition bins_start = bins_;
+    const bool fresh_start = fresh_;
+    const auto counts_start = std::tuple{level_stats_, events_, rhs_evals_, wakeups_, corrector_iterations_, last_dt_};
     removed_ = false;
     AdvanceStatus status = AdvanceStatus::Stepped;
     try {
@@ -330,6 +336,8 @@ AdvanceStatus BlockLeapfrogStepper::step(Real t_out, Real* y, Real& t) {
         start_.assign(level_start.size(), 0);
       }
       y_ = y_start, dy_ = dy_start, level_ = level_start, t_ = t_start;
+      bins_ = bins_start, fresh_ = fresh_start;
+      std::tie(level_stats_, events_, rhs_evals_, wakeups_, corrector_iterations_, last_dt_) = counts_start;
       std::copy(y_.begin(), y_.end(), y);
       t = t_;
       return status;
