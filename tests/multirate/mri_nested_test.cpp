@@ -232,8 +232,11 @@ TEST(MriNested, ANewDeepestLevelGetsItsIntegrator) {
     Real t = t0;
     EXPECT_EQ(stepper->advance(t_end, y.data(), t), AdvanceStatus::Reached) << stepper->failure_reason();
     if (stats) *stats = stepper->stats();
-    for (const auto& call : sys.calls)  // a call of particle 0 alone: the third level, after the switch
-      if (call.active == std::vector<std::size_t>{0}) EXPECT_GE(call.t, t_switch);
+    for (const auto& call : sys.calls) {  // a call of particle 0 alone: the third level, after the switch
+      if (call.active == std::vector<std::size_t>{0}) {
+        EXPECT_GE(call.t, t_switch);
+      }
+    }
     return y;
   };
   const std::vector<Real> y0 = initial_state(three_scales(), false);
