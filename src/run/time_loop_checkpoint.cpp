@@ -1,5 +1,6 @@
 // The checkpoint half of the time loop (time_loop_impl.hpp): the scalars a checkpoint holds,
 // writing one, restoring a run from one, and when one is due.
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -45,6 +46,18 @@ void TimeLoop::bind_checkpoint_scalars() {
   binds_.insert(binds_.end(), hooks_.state.begin(), hooks_.state.end());
 }
 
+// Whether the checkpoint's stepper data (Stepper::resume_data) belongs to this run's stepper:
+// the data of another method (a restart that changes --stepper) is dropped, and the new stepper
+// starts afresh at the checkpoint's state (its first step evaluates f, bins, partitions), said in
+// one line. Checkpoints of before 2026-12-07 name no stepper: their data is handed over as it is.
+bool TimeLoop::stepper_data_applies(const Checkpoint& c) const {
+  if (c.stepper_data.empty() || !c.has_text("stepper") || c.text("stepper") == opts_.method) return true;
+  if (opts_.communicator.rank() == 0)
+    std::fprintf(stderr, "%s: --restart: the checkpoint's stepper data is %s's; %s starts afresh at t = %.9g\n",
+                 s_.program.c_str(), c.text("stepper").c_str(), opts_.method.c_str(), c.t);
+  return false;
+}
+
 void TimeLoop::restore(const Checkpoint& c) {
   if (distributed()) {
     restore_share(c);
@@ -52,7 +65,7 @@ void TimeLoop::restore(const Checkpoint& c) {
     if (hooks_.restart_layout) layout_ = hooks_.restart_layout(c);
     if (auto why = layout_mismatch(c, layout_)) throw std::runtime_error("--restart: " + *why);
     y_ = c.y;
-    opts_.resume_data = c.stepper_data;
+    opts_.resume_data = stepper_data_applies(c) ? c.stepper_data : std::vector<Real>{};
   }
   t_ = c.t;
   for (auto& [name, ptr] : binds_) {
@@ -102,7 +115,7 @@ void TimeLoop::restore_share(const Checkpoint& c) {
   y_ = share_of(whole, c.y, ids);
   system_resume_ = system_share(c, ids);
   opts_.resume_data.clear();
-  if (c.stepper_data.empty()) return;
+  if (c.stepper_data.empty() || !stepper_data_applies(c)) return;
   const auto [per_entry, tail] = per_entry_and_tail(c.stepper_data, c.y.size(), "--restart");
   opts_.resume_data = share_of(whole, per_entry, ids);
   opts_.resume_data.insert(opts_.resume_data.end(), tail.begin(), tail.end());
@@ -194,6 +207,7 @@ void TimeLoop::save(Real time) {
   }
   c.y = y_;
   c.stepper_data = stepper_->resume_data();
+  c.set_text("stepper", opts_.method);  // whose data that is (stepper_data_applies)
   c.system_data = system_.resume_data();
   const OdeSystem::ResumeShape shape = system_.resume_shape();  // a distributed restart takes its share by it
   c.set_scalar("system_per_particle", shape.per_particle);

@@ -45,6 +45,7 @@ class TimeLoop {
  private:
   void bind_checkpoint_scalars();
   void restore(const Checkpoint& c);
+  bool stepper_data_applies(const Checkpoint& c) const;
   void restore_share(const Checkpoint& c);
   std::vector<Real> system_share(const Checkpoint& c, const std::vector<std::int64_t>& ids) const;
   void gather_whole_run(Checkpoint& c);

@@ -15,6 +15,7 @@
 #include "sphark/scenes/water_drop/water_drop.hpp"
 #include "sphark/schemes/wcsph/wcsph_system.hpp"
 #include "../support/temp_dir.hpp"
+#include "quiet_loop.hpp"
 
 using namespace sphark;
 using sphark::test::TempDir;
@@ -74,18 +75,8 @@ CappedRun capped_run(const WaterDropConfig& config, Real t_end, const std::files
   o.method = "ARKODE_BOGACKI_SHAMPINE_4_2_3";
   o.rtol = 1e-3;  // loose: the step wants to grow beyond the cap
   o.atol = water_drop_absolute_tolerances(drop, 1e-3);
-  TimeLoopSettings s;
-  s.program = "restart_cap_test";
-  s.t_end = t_end;
-  s.sample_every = 2e-4;
-  s.diagnostics_csv = dir / "diagnostics.csv";
-  s.columns = {"t"};
-  s.checkpoint = dir / "checkpoint.bin";
-  s.checkpoint_every = 4e-4;
-  s.restart = restart;
-  s.quiet = true;
-  TimeLoopHooks h;
-  h.diagnostics = [](Real t, const Real*, const StepperStats&) { return std::vector<Real>{t}; };
+  const TimeLoopSettings s = sphark::test::quiet_loop("restart_cap_test", t_end, 2e-4, 4e-4, dir, restart);
+  const TimeLoopHooks h = sphark::test::time_column();
   const TimeLoopResult r = run_time_loop(probe, drop.model->layout(), o, drop.y0, s, h);
   EXPECT_TRUE(r.ok()) << r.failure;
   return {probe.caps, probe.rhs_times};
