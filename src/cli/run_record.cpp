@@ -2,6 +2,8 @@
 
 #include <omp.h>
 
+#include <utility>
+
 namespace sphark {
 
 void record_options(RunRecord& record, const OptionParser& p) {
@@ -22,11 +24,15 @@ void record_options(RunRecord& record, const OptionParser& p) {
   }
 }
 
-RunRecord start_run_record(const OptionParser& p, const std::filesystem::path& dir, int ranks) {
-  RunRecord record(dir, p.program(), p.to_json(), omp_get_max_threads(), ranks);
+RunRecord start_run_record(const OptionParser& p, Json options, const std::filesystem::path& dir, int ranks) {
+  RunRecord record(dir, p.program(), std::move(options), omp_get_max_threads(), ranks);
   record_options(record, p);
   record.write();
   return record;
+}
+
+RunRecord start_run_record(const OptionParser& p, const std::filesystem::path& dir, int ranks) {
+  return start_run_record(p, p.to_json(), dir, ranks);
 }
 
 }  // namespace sphark

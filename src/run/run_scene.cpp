@@ -54,6 +54,7 @@ struct ParsedRun {
   RunControlOptions control;
   std::vector<std::string> runs;
   std::vector<std::string> stored_options;  // argv[1..] of this run (a restart's stored ones first)
+  Json given_values;  // every option's value as given, times in the scene's unit (run.json)
   std::map<std::string, detail::PlannedCost> costs;  // per run: its probe (cost estimate)
 };
 
@@ -80,6 +81,7 @@ void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* 
   parser.parse_or_exit(static_cast<int>(parse_argv.size()), parse_argv.data());
   check_run_options(parser, r.control, r.core);
   scene.check_options(parser, r.core, r.control, restart != nullptr);
+  r.given_values = parser.to_json();
   in_system_time(scene.time_unit(), r.core, r.control);
   r.runs = scene.run_names();
   if (restart) {  // one run: the checkpoint's
@@ -91,6 +93,7 @@ void parse(ParsedRun& r, Scene& scene, int argc, char** argv, const Checkpoint* 
   }
   r.stored_options.assign(args.begin() + 1, args.end());
   r.core.threads = apply_thread_count(r.core.threads, scene.program());  // the probes run on the run's threads
+  r.given_values["threads"] = r.core.threads;  // (the record names the threads the run took)
   install_stop_handlers();  // a probe stops at a request; run_scene_main then ends the set-up
   for (const std::string& name : r.runs)
     if (stop_requested() == 0) r.costs[name] = detail::plan_cost(scene, name, r.core, parser);
@@ -337,7 +340,7 @@ int run_scene_main(Scene& scene, int argc, char** argv, const Communicator& worl
   check_distributed(scene);
   start_run(p.core, program);
   // run.json: options, version, start (distributed: rank 0's, written last)
-  RootRecord record(world.rank() == 0, [&] { return start_run_record(p.parser, p.core.out, world.size()); });
+  RootRecord record(world.rank() == 0, [&] { return start_run_record(p.parser, p.given_values, p.core.out, world.size()); });
   // A stop during a set-up without a poll: no state to checkpoint, the record says so.
   auto stopped_in_setup = [&](int sig) {
     std::fprintf(stderr, "%s: stopped by signal %d during the set-up (no state to checkpoint yet)\n", program.c_str(), sig);

@@ -82,8 +82,10 @@ TEST(PerParticleSteppers, NotOfferedWhereTheSystemCannotEvaluateSubsets) {
 }
 
 // --max-dt 0.0005 [t_ff] caps the collapse's leapfrog at 0.0005 t_ff: 20 steps to 0.01 t_ff
-// (read in code units it would be 0.0005 / t_ff's 8.89 and take 178); --dt likewise.
-TEST(PerParticleSteppers, TheCollapseReadsItsStepOptionsInFreeFallTimes) {
+// (read in code units it would be 0.0005 / t_ff's 8.89 and take 178); --dt likewise. run.json
+// keeps the times as given, so `--config run.json` runs it again (it recorded them in code units,
+// which a replay read as t_ff: 8.89x the end time and the step bound).
+TEST(PerParticleSteppers, TheCollapseReadsAndRecordsItsStepOptionsInFreeFallTimes) {
   TempDir dir;
   const Args common = {"--particles", "1000", "--t-end", "0.01", "--output-every", "0.005", "--stepper", "leapfrog",
                        "--no-render", "--threads", "1"};
@@ -98,4 +100,9 @@ TEST(PerParticleSteppers, TheCollapseReadsItsStepOptionsInFreeFallTimes) {
   const Finished b = run(require_example("cloud_collapse"), with({"--dt", "0.001", "--out", fixed.string()}), dir.path());
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_EQ(steps_of(fixed / "cleaning_resistivity"), 10);
+  const auto again = dir.path() / "again";
+  const Finished c = run(require_example("cloud_collapse"), {"--config", (capped / "run.json").string(), "--out", again.string()},
+                         dir.path());
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_EQ(slurp(again / "cleaning_resistivity" / "diagnostics.csv"), slurp(capped / "cleaning_resistivity" / "diagnostics.csv"));
 }

@@ -18,6 +18,10 @@ namespace sphark {
 // ({name: "real" | "integer" | ...}), "arguments" (p.arguments(): what was parsed; on a restart
 // the checkpoint's stored options, then the ones given) and, if any, "config_files". threads = omp_get_max_threads() (set by --threads / start_run).
 RunRecord start_run_record(const OptionParser& p, const std::filesystem::path& dir, int ranks = 1);
+// The same with the option values `options` (p.to_json() taken before the values were changed,
+// e.g. times converted from the scene's unit: the record keeps what was given, so that
+// `--config run.json` runs it again).
+RunRecord start_run_record(const OptionParser& p, Json options, const std::filesystem::path& dir, int ranks = 1);
 
 // The same entries for a record made elsewhere (a study's or ensemble's run: its own options).
 void record_options(RunRecord& record, const OptionParser& p);
