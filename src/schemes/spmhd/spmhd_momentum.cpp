@@ -1,5 +1,6 @@
 // The SPMHD RHS's momentum budget (diagnostics, issue #16): the total force and the part the
 // tensile-instability correction (seed 000, eq. (9)) injects; see SpmhdScheme::momentum_budget.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -70,12 +71,19 @@ typename SpmhdScheme<D, K>::MomentumBudget SpmhdScheme<D, K>::momentum_budget(Re
     return K::unit_f_over_r(r / h_[a], h_[a] / r) / h_power[a];
   };
   const Real* weight = tensile_weights(y);
-  std::vector<std::uint32_t> near;
-  for (std::size_t a = 0; a < n_; ++a) {  // slots, serial: a fixed summation order
+  // Summed in particle (state) order, each particle's neighbours too: serial, and independent of
+  // the slots' numbering, which changes at every list build (a restarted run builds its lists
+  // elsewhere than the uninterrupted one).
+  std::vector<std::uint32_t> slot_of(n_), near;
+  for (std::size_t a = 0; a < n_; ++a) slot_of[perm_[a]] = static_cast<std::uint32_t>(a);
+  for (std::size_t p = 0; p < n_; ++p) {
+    const std::size_t a = slot_of[p];
     if (weight && weight[a] == 0) continue;
     Real S = 0;  // eq. (9)'s symmetric divergence
     const Eigen::Map<const Vec<D>> oB_a(&bo[3 * a]);
-    const std::size_t n_near = entries_within_reach(a, image, near);  // list order, as gravity_pass
+    const std::size_t n_near = entries_within_reach(a, image, near);
+    std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(n_near),
+              [this](std::uint32_t u, std::uint32_t v) { return perm_[u] < perm_[v]; });
     for (std::size_t e = 0; e < n_near; ++e) {
       const std::size_t b = near[e];
       const Vec<D> x_ab = image(x_.data() + D * a, x_.data() + D * b);
