@@ -117,6 +117,10 @@ void check_step_option(const OptionParser& p, const CoreOptions& core) {
   if (per_particle_stepper(core.stepper) && !(core.dt > 0) && !(core.max_dt > 0))
     p.fail("--stepper", core.stepper + " needs its top step: give --max-dt (the longest step; the particles' "
                                         "levels lie at power-of-two fractions of it) or --dt");
+  if (core.dt > 0 && core.max_dt > 0 && core.max_dt < core.dt)
+    p.fail("--max-dt", "below --dt: the fixed step --dt would take steps above this bound; give one of them");
+  if (core.stepper.starts_with("mri-") && core.mri_levels > 2 && core.dt > 0 && core.mri_ratio < 2)
+    p.fail("--mri-ratio", "must be >= 2 with --mri-levels > 2 and --dt (level k steps by --dt / ratio^k)");
 }
 
 std::optional<std::string> checkpoint_number_problem(const Checkpoint& c) {

@@ -74,6 +74,15 @@ TEST(PerParticleSteppers, WithoutATopStepTheyAreRefusedAtParse) {
   }
 }
 
+// Step options that contradict each other, refused before anything is written.
+TEST(PerParticleSteppers, ContradictoryStepOptionsAreRefusedAtParse) {
+  expect_refused("water_drop", {"--stepper", "leapfrog-blocks", "--dt", "1e-4", "--max-dt", "1e-5"},
+                 "--max-dt: below --dt");
+  expect_refused("water_drop", {"--dt", "1e-4", "--max-dt", "1e-5"}, "--max-dt: below --dt");  // any stepper
+  expect_refused("water_drop", {"--stepper", "mri-ARKODE_MIS_KW3", "--mri-levels", "3", "--dt", "1e-5", "--mri-ratio", "1"},
+                 "--mri-ratio: must be >= 2 with --mri-levels > 2 and --dt");
+}
+
 // The lattice's ghost scheme and the disc's fixed particles evaluate no particle subsets.
 TEST(PerParticleSteppers, NotOfferedWhereTheSystemCannotEvaluateSubsets) {
   for (const std::string program : {"cylinder_lattice", "cleaning_disc"})
