@@ -13,7 +13,8 @@ import sys
 
 import matplotlib
 matplotlib.use('Agg')
-import matplotlib.pyplot as plt
+import matplotlib.pyplot as plt  # noqa: E402
+from atomic_save import save_figure  # noqa: E402
 
 STYLE = {'leapfrog': ('tab:blue', 'o'), 'erk-dp5': ('tab:orange', 's'), 'leapfrog-blocks': ('tab:green', '^'),
          'mri-erk33a': ('tab:red', 'D'), 'mri-erk45a': ('tab:purple', 'v')}
@@ -50,7 +51,7 @@ def main():
     ax.grid(True, which='both', alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=120)
+    save_figure(fig, sys.argv[2], dpi=120)
 
 
 if __name__ == '__main__':

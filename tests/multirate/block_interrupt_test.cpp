@@ -24,8 +24,7 @@ struct Outcome {
 Outcome run(bool interrupt_at_landing) {
   const Real h = 0.05;
   HystereticEnsemble sys(0.2, 0.4, 1.1 * h / 4);  // particle 0 held on a level by the hysteresis
-  std::vector<Real> y(sys.size());
-  for (std::size_t i = 0; i < sys.n(); ++i) y[i] = std::cos(1.0 + i), y[sys.n() + i] = std::sin(2.0 * i);
+  std::vector<Real> y = excited_state(sys.n());
   bool armed = false;
   int polls = 0;
   StepperOptions o;

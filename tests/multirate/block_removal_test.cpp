@@ -22,12 +22,6 @@ const std::vector<Real> kOmega = {1, 1, 1, 1, 100, 100, 100, 1};
 constexpr std::size_t kGone = 5;  // a fast one
 constexpr Real kTop = 0.1;
 
-std::vector<Real> initial_state(std::size_t n) {
-  std::vector<Real> y(2 * n);
-  for (std::size_t i = 0; i < n; ++i) y[i] = std::cos(1.0 + i), y[n + i] = std::sin(2.0 * i);
-  return y;
-}
-
 // y without particle i (positions x_0..x_{n-1}, then velocities) and where each entry came from.
 StepperOptions::Removal without(const Real* y, std::size_t n, std::size_t i) {
   StepperOptions::Removal r;
@@ -68,7 +62,7 @@ struct RemovalRun {
 
 TEST(BlockRemoval, TheOthersGoOnBitForBitAsIfTheRemovedParticleHadNeverBeen) {
   RemovalRun run;
-  const std::vector<Real> y0 = initial_state(kOmega.size());
+  const std::vector<Real> y0 = excited_state(kOmega.size());
   auto stepper = make_stepper(run.sys, run.options(5), 0, y0.data());
   std::vector<Real> y(y0.size());
   Real t = 0;
@@ -97,7 +91,7 @@ TEST(BlockRemoval, TheOthersGoOnBitForBitAsIfTheRemovedParticleHadNeverBeen) {
 
 TEST(BlockRemoval, AStepInterruptedAfterARemovalRollsBackWithTheParticlesGivenBack) {
   RemovalRun run;
-  const std::vector<Real> y0 = initial_state(kOmega.size());
+  const std::vector<Real> y0 = excited_state(kOmega.size());
   StepperOptions o = run.options(3);
   int polls = 0;
   o.interrupt = [&polls] { return ++polls == 10; };  // after the removal, inside the first top step
@@ -150,7 +144,7 @@ TEST(BlockRemoval, AParticleMadeAtAnEventStartsItsStepsThere) {
     return std::optional<StepperOptions::Removal>(std::move(r));
   };
   o.undo_removals = [] {};
-  const std::vector<Real> y0 = initial_state(n);
+  const std::vector<Real> y0 = excited_state(n);
   auto stepper = make_stepper(sys, o, 0, y0.data());
   std::vector<Real> y(y0.size());
   Real t = 0;
@@ -177,7 +171,7 @@ TEST(BlockRemoval, AParticleNamedByWakeNextIsEvaluatedAtTheNextEvent) {
     o.wake_next = [&calls, wake](Real, const Real*, const std::vector<std::size_t>&) {
       return wake && ++calls == 1 ? std::vector<std::size_t>{0} : std::vector<std::size_t>{};
     };
-    const std::vector<Real> y0 = initial_state(kOmega.size());
+    const std::vector<Real> y0 = excited_state(kOmega.size());
     auto stepper = make_stepper(sys, o, 0, y0.data());
     std::vector<Real> y(y0.size());
     Real t = 0;

@@ -12,12 +12,6 @@
 namespace sphark::test {
 namespace {
 
-std::vector<Real> initial_state(std::size_t n) {
-  std::vector<Real> y(2 * n);
-  for (std::size_t i = 0; i < n; ++i) y[i] = std::cos(1.0 + i), y[n + i] = std::sin(2.0 * i);
-  return y;
-}
-
 StepperOptions adaptive(Real max_dt) {
   StepperOptions o;
   o.method = "mri-ARKODE_MRI_GARK_ERK33a";
@@ -41,7 +35,7 @@ Real run(OdeSystem& sys, const StepperOptions& o, Real t0, const std::vector<Rea
 // level 4 (0.1 / 16 <= 0.01): the same run as the fixed slow step 0.1 with ratio 16.
 TEST(MriAdaptive, ItsStepsAreThePowerOfTwoLevels) {
   OscillatorEnsemble a = OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3), b = a;
-  const std::vector<Real> y0 = initial_state(8);
+  const std::vector<Real> y0 = excited_state(8);
   std::vector<Real> ya, yb;
   StepperStats s;
   run(a, adaptive(0.1), 0, y0, 1.0, ya, &s);
@@ -60,7 +54,7 @@ TEST(MriAdaptive, ItsStepsAreThePowerOfTwoLevels) {
 // run then goes on as a fresh stepper started there, bit for bit.
 TEST(MriAdaptive, TheSlowStepFollowsTheLevels) {
   HalvingEnsemble a(0.5), b(0.5);
-  const std::vector<Real> y0 = initial_state(8);
+  const std::vector<Real> y0 = excited_state(8);
   std::vector<Real> y_half, ya, yb;
   StepperStats s;
   StepperOptions o = adaptive(0.1);
@@ -79,7 +73,7 @@ TEST(MriAdaptive, OrderAsMaxDtHalves) {
   std::vector<Real> e;
   for (int k = 0; k < 4; ++k) {
     OscillatorEnsemble sys({1, 1, 1, 1, 1, 1, 100, 100}, 0.3);
-    const std::vector<Real> y0 = sys.project_below(initial_state(8), 10);  // the slow manifold
+    const std::vector<Real> y0 = sys.project_below(excited_state(8), 10);  // the slow manifold
     StepperOptions o = adaptive(0.1 / (1 << k));
     o.cfl_safety = 10 * o.max_dt;  // the levels fixed as max_dt halves: slow 0, fast 4
     o.mri_fast_table = "ARKODE_DORMAND_PRINCE_7_4_5";
@@ -99,7 +93,7 @@ TEST(MriAdaptive, OrderAsMaxDtHalves) {
 
 TEST(MriAdaptive, NeedsASlowFractionInZeroOne) {
   OscillatorEnsemble sys({1, 100}, 0.3);
-  const std::vector<Real> y0 = initial_state(2);
+  const std::vector<Real> y0 = excited_state(2);
   StepperOptions o = adaptive(0.1);
   o.mri_slow_fraction = 1.5;
   EXPECT_THROW(make_stepper(sys, o, 0, y0.data()), std::invalid_argument);

@@ -20,12 +20,6 @@ namespace {
 
 OscillatorEnsemble ensemble() { return OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3); }
 
-std::vector<Real> initial_state(std::size_t n) {
-  std::vector<Real> y(2 * n);
-  for (std::size_t i = 0; i < n; ++i) y[i] = std::cos(1.0 + i), y[n + i] = std::sin(2.0 * i);
-  return y;
-}
-
 StepperOptions mri(Real h = 0.05, int ratio = 20, const std::string& table = "ARKODE_MRI_GARK_ERK33a") {
   StepperOptions o;
   o.method = "mri-" + table;
@@ -60,7 +54,7 @@ TEST(MriBookkeeping, EachLevelEvaluatesExactlyItsSet) {
   for (const std::string& table : mri_table_names()) {
     OscillatorEnsemble sys = ensemble();
     sys.record_calls = true;
-    const std::vector<Real> y0 = initial_state(sys.n());
+    const std::vector<Real> y0 = excited_state(sys.n());
     const StepperOptions o = mri(0.05, 20, table);
     auto stepper = make_stepper(sys, o, 0, y0.data());
     std::vector<Real> y(y0.size());
@@ -94,7 +88,7 @@ TEST(MriBookkeeping, EachLevelEvaluatesExactlyItsSet) {
 TEST(MriBookkeeping, GlobalSteppersCountTheirParticlesPerRhsCall) {
   for (const std::string method : {"ARKODE_DORMAND_PRINCE_7_4_5", "leapfrog", "ARKODE_ZONNEVELD_5_3_4"}) {
     OscillatorEnsemble sys = ensemble();
-    const std::vector<Real> y0 = initial_state(sys.n());
+    const std::vector<Real> y0 = excited_state(sys.n());
     StepperOptions o;
     o.method = method;
     if (method != "ARKODE_DORMAND_PRINCE_7_4_5") o.fixed_dt = 0.005;
@@ -136,7 +130,7 @@ TEST(MriBookkeeping, ARepartitionKeepsTheStateBitForBit) {
   const Real t1 = 0.5, t2 = 1.0;
   SwitchingEnsemble a_sys(0.48);
   a_sys.record_calls = true;
-  const std::vector<Real> y0 = initial_state(a_sys.n());
+  const std::vector<Real> y0 = excited_state(a_sys.n());
   auto a = make_stepper(a_sys, mri(), 0, y0.data());
   std::vector<Real> y1(y0.size()), ya(y0.size()), yb(y0.size());
   Real t = 0;
@@ -180,7 +174,7 @@ TEST(MriBookkeeping, ARestartCarriesThePartition) {
     if (resume_out) *resume_out = stepper->resume_data();
     return y;
   };
-  const std::vector<Real> y0 = initial_state(8);
+  const std::vector<Real> y0 = excited_state(8);
   std::vector<Real> resume;
   const std::vector<Real> y1 = run(0, y0, {}, {t1}, &resume);
   ASSERT_EQ(resume.size(), 8u + 16u);  // the levels, then the latest derivatives
@@ -193,12 +187,12 @@ TEST(MriBookkeeping, ARestartCarriesThePartition) {
 }
 
 TEST(MriBookkeeping, ResizeStartsMriStepAfreshAtTheNewState) {
-  expect_resize_continues_as_fresh(ensemble, mri(), initial_state(8), 0.5, 1.0, 20);
+  expect_resize_continues_as_fresh(ensemble, mri(), excited_state(8), 0.5, 1.0, 20);
 }
 
 TEST(MriBookkeeping, BadOptionsAreOneLineInvalidArguments) {
   OscillatorEnsemble sys = ensemble();
-  const std::vector<Real> y0 = initial_state(sys.n());
+  const std::vector<Real> y0 = excited_state(sys.n());
   auto expect_error = [&](const StepperOptions& o, const std::string& what) { expect_invalid_argument(sys, o, y0, what); };
   StepperOptions o = mri();
   o.method = "mri-ARKODE_NO_SUCH_TABLE";
@@ -220,7 +214,7 @@ TEST(MriBookkeeping, BadOptionsAreOneLineInvalidArguments) {
 
 TEST(MriBookkeeping, AFastStepAboveAParticlesStableStepIsRefused) {
   OscillatorEnsemble sys = ensemble();
-  const std::vector<Real> y0 = initial_state(sys.n());
+  const std::vector<Real> y0 = excited_state(sys.n());
   try {
     make_stepper(sys, mri(0.05, 4), 0, y0.data());  // h / 4 = 0.0125 > 1 / 100
     ADD_FAILURE() << "no error";
@@ -242,7 +236,7 @@ class ThrowingEnsemble : public OscillatorEnsemble {
 
 TEST(MriBookkeeping, AnExceptionInACallbackIsAFailureWithItsMessage) {
   ThrowingEnsemble sys;
-  const std::vector<Real> y0 = initial_state(sys.n());
+  const std::vector<Real> y0 = excited_state(sys.n());
   auto stepper = make_stepper(sys, mri(), 0, y0.data());
   std::vector<Real> y(y0.size());
   Real t = 0;

@@ -21,15 +21,8 @@ OscillatorEnsemble three_scales() { return OscillatorEnsemble({1, 1, 1, 1, 50, 5
 const std::vector<std::size_t> kSlow{0, 1, 2, 3}, kMiddle{4, 5}, kFast{6, 7}, kMiddleAndFast{4, 5, 6, 7};
 
 std::vector<Real> initial_state(const OscillatorEnsemble& sys, bool slow_manifold) {
-  std::vector<Real> y(sys.size());
-  for (std::size_t i = 0; i < sys.n(); ++i) y[i] = std::cos(1.0 + i), y[sys.n() + i] = std::sin(2.0 * i);
+  const std::vector<Real> y = excited_state(sys.n());
   return slow_manifold ? sys.project_below(y, 10) : y;
-}
-
-Real max_error(const std::vector<Real>& a, const std::vector<Real>& b) {
-  Real e = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) e = std::max(e, std::abs(a[k] - b[k]));
-  return e;
 }
 
 // Slow step h, level k steps by h / ratio^k: for 0.025 <= h <= 0.2 and ratio 20 the w = 50

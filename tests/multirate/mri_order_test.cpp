@@ -15,18 +15,8 @@ namespace {
 OscillatorEnsemble ensemble() { return OscillatorEnsemble({1, 1, 1, 1, 1, 1, 100, 100}, 0.3); }
 
 std::vector<Real> initial_state(const OscillatorEnsemble& sys, bool slow_manifold) {
-  std::vector<Real> y(sys.size());
-  for (std::size_t i = 0; i < sys.n(); ++i) {
-    y[i] = std::cos(1.0 + i);
-    y[sys.n() + i] = std::sin(2.0 * i);
-  }
+  const std::vector<Real> y = excited_state(sys.n());
   return slow_manifold ? sys.project_below(y, 10) : y;
-}
-
-Real max_error(const std::vector<Real>& a, const std::vector<Real>& b) {
-  Real e = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) e = std::max(e, std::abs(a[k] - b[k]));
-  return e;
 }
 
 StepperOptions mri(const std::string& table, Real h, int ratio) {

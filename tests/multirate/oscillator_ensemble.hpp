@@ -1,6 +1,8 @@
 #pragma once
 // The two-time-scale test problem of issue #17 (sphark/study/oscillator_model.hpp), its calls
 // counted: full_calls, subset_calls, and with record_calls every rhs_subset call's (t, active).
+#include <algorithm>
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -29,5 +31,12 @@ class OscillatorEnsemble : public OscillatorModel {
   bool record_calls = false;
   std::vector<Call> calls;  // every rhs_subset call when record_calls
 };
+
+// The largest |a_k - b_k| over every entry.
+inline Real max_error(const std::vector<Real>& a, const std::vector<Real>& b) {
+  Real e = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) e = std::max(e, std::abs(a[k] - b[k]));
+  return e;
+}
 
 }  // namespace sphark::test
